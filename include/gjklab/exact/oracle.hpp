@@ -1,0 +1,66 @@
+// The exact oracle: ground truth for two point clouds, computed with exact rational arithmetic.
+//
+// Every double is an exact rational, so the oracle's answers are exact for the clouds as given
+// (no tolerance anywhere). Lower-dimensional clouds (single points, duplicates, collinear and
+// coplanar sets) are legal. The implementation uses CGAL and lives in src/exact/ only: this
+// header exposes plain doubles and decimal strings so that no other translation unit pays for
+// CGAL's headers.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab::exact {
+
+/// An exact non-negative rational num/den in lowest terms, as decimal strings (den ≥ 1).
+struct Rational {
+  std::string numerator = "0";
+  std::string denominator = "1";
+  /// The nearest double to num/den (round to nearest, ties to even).
+  double to_double() const;
+  bool is_zero() const { return numerator == "0"; }
+};
+
+/// Returns the double nearest to √(num/den) (correctly rounded).
+double sqrt_to_double(const Rational& r);
+
+struct OracleOptions {
+  /// Also compute the exact squared penetration depth of intersecting pairs. This builds the
+  /// exact hull of the Minkowski difference (|A|·|B| points) and is much slower.
+  bool depth = false;
+};
+
+struct OracleAnswer {
+  /// The closed convex hulls share at least one point (touching counts as intersecting).
+  bool intersect = false;
+  /// Exact squared Euclidean distance between the hulls (0 when intersecting).
+  Rational distance_squared;
+  /// √distance_squared rounded to the nearest double.
+  double distance = 0;
+  /// Number of vertices of each cloud's convex hull (1 for a point, 2 for a segment, the
+  /// polygon's corner count for a flat cloud); duplicates and interior points do not count.
+  int hull_vertices_a = 0;
+  int hull_vertices_b = 0;
+  /// With OracleOptions::depth and intersect: the exact squared penetration depth, i.e. the
+  /// squared distance from the origin to the boundary of A − B (0 when the pair only touches
+  /// or when A − B has no interior). Empty when not requested or not intersecting.
+  std::optional<Rational> depth_squared;
+  /// √depth_squared rounded to the nearest double, when depth_squared is present.
+  std::optional<double> depth;
+};
+
+/// Solves the pair exactly. Throws std::invalid_argument for an empty cloud or a non-finite
+/// coordinate (the message names which cloud).
+OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b,
+                   const OracleOptions& options = {});
+
+/// Number of vertices of the convex hull of one cloud (see OracleAnswer::hull_vertices_a).
+int hull_vertex_count(std::span<const Vec3> cloud);
+
+/// Version string of the CGAL library the oracle was built with (for provenance).
+std::string cgal_version();
+
+}  // namespace gjklab::exact

@@ -1,0 +1,29 @@
+// Result structs shared by all algorithms: one query, one input, one result.
+#pragma once
+
+#include "gjklab/geometry/types.hpp"
+#include "gjklab/gjk/termination.hpp"
+
+namespace gjklab {
+
+/// Answer of a boolean (intersection-only) query.
+struct BooleanResult {
+  bool intersect = false;  ///< closed shapes share a point (touching counts as intersecting)
+  int iterations = 0;      ///< main-loop iterations executed
+  int support_calls = 0;   ///< support evaluations of the Minkowski difference (one per shape pair)
+  Termination termination = Termination::converged;
+};
+
+/// Answer of a distance query.
+struct DistanceResult {
+  bool intersect = false;  ///< closed shapes share a point (within the contact tolerance)
+  double distance = 0;     ///< Euclidean distance (length units); 0 when intersecting
+  Vec3 witness_a = Vec3::Zero();  ///< point of A closest to B (world frame)
+  Vec3 witness_b = Vec3::Zero();  ///< point of B closest to A; witness_a − witness_b = v
+  Vec3 closest = Vec3::Zero();    ///< v: the point of A − B closest to the origin
+  int iterations = 0;
+  int support_calls = 0;
+  Termination termination = Termination::converged;
+};
+
+}  // namespace gjklab

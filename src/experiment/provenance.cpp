@@ -1,0 +1,39 @@
+#include "gjklab/experiment/provenance.hpp"
+
+#include <gsl/gsl_version.h>
+#include <hdf5.h>
+
+#include <Eigen/Core>
+
+#include "gjklab/build_info.hpp"
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/peers/libccd.hpp"
+
+namespace gjklab::experiment {
+
+namespace {
+std::string hdf5_version() {
+  unsigned major = 0, minor = 0, release = 0;
+  H5get_libversion(&major, &minor, &release);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(release);
+}
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> build_provenance() {
+  return {
+      {"gjklab_version", build_info::version},
+      {"git_commit", build_info::git_commit},
+      {"compiler", build_info::compiler},
+      {"build_type", build_info::build_type},
+      {"cxx_flags", build_info::cxx_flags},
+      {"cgal_version", exact::cgal_version()},
+      {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." +
+                            std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                            std::to_string(EIGEN_MINOR_VERSION)},
+      {"hdf5_version", hdf5_version()},
+      {"gsl_version", GSL_VERSION},
+      {"libccd_version", peers::libccd_version()},
+  };
+}
+
+}  // namespace gjklab::experiment
