@@ -1,0 +1,66 @@
+// The classic boolean GJK: walks a simplex of A − B towards the origin until the simplex
+// encloses it (intersection) or a support point fails to pass it (separation).
+//
+// Search directions come from triple products (no closest-point computation), so the query
+// answers only "do the shapes intersect?". The first support point that does not pass the
+// origin, s·d < 0, proves separation: the plane through the origin with normal d separates.
+#pragma once
+
+#include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/result.hpp"
+
+namespace gjklab {
+
+namespace detail {
+
+/// Simplex of the boolean GJK, newest point first (points[0] is the last support point).
+struct BooleanSimplex {
+  Vec3 points[4];
+  int size = 0;
+};
+
+/// Updates simplex and direction for the segment, triangle or tetrahedron case.
+/// Returns true when the origin is enclosed (on the boundary counts).
+bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
+
+}  // namespace detail
+
+template <SupportMap A, SupportMap B>
+BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& options = {},
+                            const Vec3& initial_direction = Vec3(1, 0, 0)) {
+  BooleanResult out;
+  const MinkowskiDifference<A, B> cso(a, b);
+  detail::BooleanSimplex simplex;
+  simplex.points[0] = cso.support(initial_direction);
+  simplex.size = 1;
+  out.support_calls = 1;
+  Vec3 direction = -simplex.points[0];
+
+  auto finish = [&](bool intersect, Termination t) {
+    out.intersect = intersect;
+    out.termination = t;
+    return out;
+  };
+  if (!simplex.points[0].allFinite()) return finish(false, Termination::numerical_failure);
+
+  for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
+    // A zero direction means the origin lies on the current simplex: the shapes touch.
+    if (direction.isZero(0)) return finish(true, Termination::converged);
+    if (!direction.allFinite()) return finish(false, Termination::numerical_failure);
+    const Vec3 w = cso.support(direction);
+    ++out.support_calls;
+    if (!w.allFinite()) return finish(false, Termination::numerical_failure);
+    if (w.dot(direction) < 0) return finish(false, Termination::converged);
+    for (int i = simplex.size; i > 0; --i) simplex.points[i] = simplex.points[i - 1];
+    simplex.points[0] = w;
+    ++simplex.size;
+    if (detail::boolean_gjk_step(simplex, direction)) return finish(true, Termination::converged);
+  }
+  out.iterations = options.max_iterations;
+  // No separating plane was found within the budget; the answer is undetermined and reported
+  // as "not intersecting" only together with step_limit.
+  return finish(false, Termination::step_limit);
+}
+
+}  // namespace gjklab

@@ -1,0 +1,45 @@
+// Johnson's distance sub-algorithm (Gilbert, Johnson and Keerthi 1988, section 3).
+//
+// Given a simplex Y = {y_0 … y_{m−1}} (m ≤ 4 points, possibly degenerate), find the point of
+// conv(Y) closest to the origin. For every non-empty subset X ⊆ Y the cofactors Δ_i(X) are
+// built by the recursion
+//   Δ_i({y_i}) = 1,
+//   Δ_j(X ∪ {y_j}) = Σ_{i∈X} Δ_i(X) · (y_k − y_j)·y_i      (k: the first index in X),
+//   Δ(X) = Σ_{i∈X} Δ_i(X),
+// and the answer is the subset X with Δ(X) > 0, Δ_i(X) > 0 for i ∈ X (the closest point of
+// aff(X) lies inside conv(X)) and Δ_j(X ∪ {y_j}) ≤ 0 for j ∉ X (no point outside X can
+// decrease the distance). In exact arithmetic exactly one subset passes; in double none may,
+// which the caller must report (Termination::degenerate_simplex).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab {
+
+/// All cofactors of a simplex of up to four points, indexed by subset bitmask (bit i ↔ y_i).
+struct JohnsonCofactors {
+  std::array<std::array<double, 4>, 16> delta{};  ///< delta[X][i] = Δ_i(X) for i ∈ X
+  std::array<double, 16> total{};                 ///< total[X] = Δ(X)
+};
+
+struct JohnsonSolution {
+  bool found = false;        ///< false when no subset passed both tests
+  std::uint8_t subset = 0;   ///< bitmask of the chosen sub-simplex X
+  std::array<double, 4> weights{};  ///< barycentric weights λ_i = Δ_i(X)/Δ(X); 0 outside X
+  Vec3 closest = Vec3::Zero();      ///< v = Σ λ_i y_i
+};
+
+/// Computes every cofactor Δ_i(X) of the simplex y[0 … count−1] (count in 1…4).
+JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count);
+
+/// True if subset X passes Johnson's two tests for the simplex of `count` points.
+bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count);
+
+/// Johnson's sub-algorithm: tests the subsets in order of increasing size (then increasing
+/// mask) and returns the first that passes, with its weights and closest point.
+JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count);
+
+}  // namespace gjklab

@@ -1,0 +1,57 @@
+// The GJK simplex: up to four points of the Minkowski difference A − B, each remembered with
+// the support points of A and B that produced it (for witness points and traces).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab {
+
+struct SimplexVertex {
+  Vec3 w;  ///< w = a − b, a point of the Minkowski difference
+  Vec3 a;  ///< support point of A
+  Vec3 b;  ///< support point of B
+};
+
+class Simplex {
+ public:
+  static constexpr int kCapacity = 4;
+
+  int size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  bool full() const { return size_ == kCapacity; }
+  const SimplexVertex& operator[](int i) const { return vertices_[i]; }
+
+  void push(const SimplexVertex& v) { vertices_[size_++] = v; }
+  void clear() { size_ = 0; }
+
+  /// Keeps the vertices whose bit is set in mask (bit i ↔ vertex i), preserving their order.
+  void keep(std::uint8_t mask) {
+    int out = 0;
+    for (int i = 0; i < size_; ++i)
+      if (mask & (1u << i)) vertices_[out++] = vertices_[i];
+    size_ = out;
+  }
+
+  /// True if w equals (bitwise) one of the simplex points.
+  bool contains(const Vec3& w) const {
+    for (int i = 0; i < size_; ++i)
+      if (vertices_[i].w == w) return true;
+    return false;
+  }
+
+  /// Largest ‖w_i‖² over the simplex points: the scale that rounding errors refer to.
+  double max_norm_squared() const {
+    double m = 0;
+    for (int i = 0; i < size_; ++i) m = std::max(m, vertices_[i].w.squaredNorm());
+    return m;
+  }
+
+ private:
+  std::array<SimplexVertex, kCapacity> vertices_{};
+  int size_ = 0;
+};
+
+}  // namespace gjklab
