@@ -4,14 +4,17 @@
 #include <ostream>
 
 #include "gjklab/experiment/provenance.hpp"
+#include "gjklab/query.hpp"
 
 namespace gjklab::cli {
 
-int run(int argc, const char* const* argv, std::istream& /*in*/, std::ostream& out,
+int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
         std::ostream& err) {
   CLI::App app{"gjklab: a research testbed for GJK-family collision and distance queries"};
   app.require_subcommand(1);
   auto* version = app.add_subcommand("version", "print the version, build and library versions");
+  QueryArgs query_args;
+  auto* query = add_query_command(app, query_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -21,6 +24,7 @@ int run(int argc, const char* const* argv, std::istream& /*in*/, std::ostream& o
     err << "gjklab: " << e.what() << "\n" << "run 'gjklab --help' for usage\n";
     return 2;
   }
+  if (query->parsed()) return run_query(query_args, in, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance()) out << name << ": " << value << "\n";
   }

@@ -1,0 +1,177 @@
+#include "gjklab/query.hpp"
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <istream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <thread>
+
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
+
+namespace gjklab::cli {
+
+namespace {
+
+using experiment::AlgorithmInfo;
+using experiment::CaseError;
+using experiment::CaseOrError;
+using experiment::PointCase;
+using Json = nlohmann::ordered_json;
+
+/// The JSON line of one algorithm's answer for one case.
+std::string answer_line(const std::string& id, const AlgorithmInfo& algorithm,
+                        const experiment::Outcome& o) {
+  Json j;
+  j["id"] = id;
+  j["algorithm"] = algorithm.name;
+  j["intersect"] = o.intersect;
+  if (o.distance) j["distance"] = *o.distance;
+  j["iterations"] = o.iterations;
+  j["support_calls"] = o.support_calls;
+  j["termination"] = to_string(o.termination);
+  if (o.exact) {
+    j["distance2_num"] = o.exact->distance_squared.numerator;
+    j["distance2_den"] = o.exact->distance_squared.denominator;
+    j["hull_vertices_a"] = o.exact->hull_vertices_a;
+    j["hull_vertices_b"] = o.exact->hull_vertices_b;
+    if (o.exact->depth_squared) {
+      j["depth"] = *o.exact->depth;
+      j["depth2_num"] = o.exact->depth_squared->numerator;
+      j["depth2_den"] = o.exact->depth_squared->denominator;
+    }
+  }
+  return j.dump();
+}
+
+std::string error_line(const std::string& id, const std::string& problem,
+                       const AlgorithmInfo* algorithm = nullptr) {
+  Json j;
+  j["id"] = id;
+  if (algorithm) j["algorithm"] = algorithm->name;
+  j["error"] = problem;
+  return j.dump();
+}
+
+/// Every selected algorithm on one valid case: one output line each.
+std::vector<std::string> answer_case(const PointCase& c,
+                                     const std::vector<const AlgorithmInfo*>& selected,
+                                     const experiment::AlgorithmOptions& options) {
+  std::vector<std::string> lines;
+  const Polytope a(c.a), b(c.b);
+  for (const AlgorithmInfo* algorithm : selected) {
+    try {
+      lines.push_back(answer_line(c.id, *algorithm, algorithm->run(a, b, options)));
+    } catch (const std::exception& e) {
+      lines.push_back(error_line(c.id, e.what(), algorithm));
+    }
+  }
+  return lines;
+}
+
+/// Cases from the two point files or the cases file; file-level problems become CaseErrors.
+std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in,
+                                    std::string& source) {
+  if (args.cases.empty()) {
+    source = args.files[0] + " " + args.files[1];
+    try {
+      return {PointCase{args.files[0] + " vs " + args.files[1],
+                        experiment::read_point_file(args.files[0]),
+                        experiment::read_point_file(args.files[1])}};
+    } catch (const experiment::InputError& e) {
+      return {CaseError{args.files[0] + " vs " + args.files[1], 0, e.what()}};
+    }
+  }
+  source = args.cases;
+  if (args.cases == "-") {
+    std::vector<CaseOrError> out;
+    std::string raw;
+    for (int number = 1; std::getline(in, raw); ++number)
+      if (raw.find_first_not_of(" \t\r") != std::string::npos)
+        out.push_back(experiment::parse_case_line(raw, number));
+    source = "<stdin>";
+    return out;
+  }
+  try {
+    return experiment::read_cases_file(args.cases);
+  } catch (const experiment::InputError& e) {
+    return {CaseError{args.cases, 0, e.problem()}};
+  }
+}
+
+}  // namespace
+
+CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "query", "answer one pair (two point files) or every case of a JSON-lines file");
+  cmd->add_option("files", args.files, "point files A and B (.xyz, .off or .obj)")->expected(0, 2);
+  cmd->add_option("--cases", args.cases,
+                  "JSON-lines cases file, one {\"id\", \"a\", \"b\"} per line ('-' for stdin)");
+  cmd->add_option("--algorithms", args.algorithms,
+                  "comma-separated algorithm names (default: all): " +
+                      experiment::algorithm_names())
+      ->delimiter(',');
+  cmd->add_option("--max-iterations", args.max_iterations,
+                  "iteration bound for every iterative algorithm (default: each one's own)")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
+  cmd->add_flag("--depth", args.depth, "exact penetration depth for intersecting pairs (slow)");
+  return cmd;
+}
+
+int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::ostream& err) {
+  if (args.cases.empty() == (args.files.size() != 2)) {
+    err << "gjklab query: give two point files or --cases FILE (not both)\n";
+    return 2;
+  }
+  std::vector<const AlgorithmInfo*> selected;
+  if (args.algorithms.empty()) {
+    for (const AlgorithmInfo& a : experiment::algorithms()) selected.push_back(&a);
+  }
+  for (const std::string& name : args.algorithms) {
+    const AlgorithmInfo* a = experiment::find_algorithm(name);
+    if (!a) {
+      err << "gjklab query: unknown algorithm '" << name
+          << "'; valid names: " << experiment::algorithm_names() << "\n";
+      return 2;
+    }
+    selected.push_back(a);
+  }
+  experiment::AlgorithmOptions options;
+  if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
+  options.oracle.depth = args.depth;
+
+  std::string source;
+  const std::vector<CaseOrError> cases = load_cases(args, in, source);
+  std::vector<std::vector<std::string>> lines(cases.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      if (const auto* c = std::get_if<PointCase>(&cases[i]))
+        lines[i] = answer_case(*c, selected, options);
+    }
+  };
+  std::vector<std::thread> pool;
+  const int threads = std::min<int>(args.threads, std::max<std::size_t>(cases.size(), 1));
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+
+  int status = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (const auto* e = std::get_if<CaseError>(&cases[i])) {
+      err << "gjklab query: " << source;
+      if (e->line > 0) err << ":" << e->line;
+      err << ": case '" << e->id << "': " << e->problem << "\n";
+      out << error_line(e->id, e->problem) << "\n";
+      status = 1;
+      continue;
+    }
+    for (const std::string& line : lines[i]) out << line << "\n";
+  }
+  out.flush();
+  return status;
+}
+
+}  // namespace gjklab::cli

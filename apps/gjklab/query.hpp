@@ -1,0 +1,29 @@
+// `gjklab query`: every selected algorithm on user-supplied point clouds, as JSON lines.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace gjklab::cli {
+
+struct QueryArgs {
+  std::vector<std::string> files;       ///< two point files (A and B), or none with --cases
+  std::string cases;                    ///< JSON-lines cases file ("-" for standard input)
+  std::vector<std::string> algorithms;  ///< empty: all
+  int max_iterations = 0;               ///< 0: each algorithm's default
+  int threads = 1;
+  bool depth = false;                   ///< exact penetration depth for intersecting pairs
+};
+
+/// Registers the `query` subcommand and its options on app.
+CLI::App* add_query_command(CLI::App& app, QueryArgs& args);
+
+/// Runs the query; returns 0, 1 if any case was invalid, 2 for a usage error.
+int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::ostream& err);
+
+}  // namespace gjklab::cli

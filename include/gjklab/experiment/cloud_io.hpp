@@ -1,0 +1,64 @@
+// Reading point clouds and cases from files: .xyz, .off and .obj vertex lists, and the
+// JSON-lines case format of `gjklab query --cases`.
+//
+// JSON-lines format, one case per line:
+//   {"id": "name", "a": [[x, y, z], ...], "b": [[x, y, z], ...]}
+// Coordinates are JSON numbers; 17 significant digits round-trip a double exactly.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab::experiment {
+
+/// A problem with an input file, located by file and line (line 0: the file as a whole).
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string file, int line, std::string problem);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string file_;
+  int line_;
+  std::string problem_;
+};
+
+/// One pair of point clouds to query.
+struct PointCase {
+  std::string id;
+  std::vector<Vec3> a, b;
+};
+
+/// A line of a cases file that could not be read, with the id if one was found.
+struct CaseError {
+  std::string id;
+  int line = 0;
+  std::string problem;
+};
+
+using CaseOrError = std::variant<PointCase, CaseError>;
+
+/// Reads the vertices of a .xyz (x y z per line), .off or .obj file. Throws InputError naming
+/// the file and line for a missing file, an unknown extension, a malformed line, a non-finite
+/// coordinate or an empty cloud.
+std::vector<Vec3> read_point_file(const std::filesystem::path& path);
+
+/// Parses one JSON line into a case; problems are returned as a CaseError (never thrown).
+/// `line` is used for the default id ("line N") and in errors.
+CaseOrError parse_case_line(std::string_view text, int line);
+
+/// Reads every non-blank line of a cases file. Throws InputError if the file cannot be opened.
+std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path);
+
+/// The JSON line of a case, with every coordinate written to round-trip exactly.
+std::string case_to_json_line(const PointCase& c);
+
+}  // namespace gjklab::experiment

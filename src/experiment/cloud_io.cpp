@@ -1,0 +1,217 @@
+#include "gjklab/experiment/cloud_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "gjklab/geometry/polytope.hpp"
+
+namespace gjklab::experiment {
+
+InputError::InputError(std::string file, int line, std::string problem)
+    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                         problem),
+      file_(std::move(file)),
+      line_(line),
+      problem_(std::move(problem)) {}
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+/// Splits on white space and commas.
+std::vector<std::string_view> fields(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  auto is_sep = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || c == ','; };
+  while (i < s.size()) {
+    while (i < s.size() && is_sep(s[i])) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !is_sep(s[i])) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+bool parse_double(std::string_view s, double& out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+/// Parses three coordinates from fields[first … first+2]; throws InputError.
+Vec3 parse_point(const std::vector<std::string_view>& f, std::size_t first, const std::string& file,
+                 int line) {
+  if (f.size() < first + 3) throw InputError(file, line, "expected three coordinates");
+  Vec3 p;
+  for (int k = 0; k < 3; ++k) {
+    if (!parse_double(f[first + k], p[k]))
+      throw InputError(file, line, "not a number: '" + std::string(f[first + k]) + "'");
+    if (!std::isfinite(p[k])) throw InputError(file, line, "non-finite coordinate");
+  }
+  return p;
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// Lines of a text file with comments ('#' to end of line) removed and blank lines skipped,
+/// each with its 1-based line number.
+std::vector<std::pair<int, std::string>> content_lines(std::istream& in) {
+  std::vector<std::pair<int, std::string>> out;
+  std::string raw;
+  for (int number = 1; std::getline(in, raw); ++number) {
+    std::string_view s = raw;
+    if (const auto hash = s.find('#'); hash != std::string_view::npos) s = s.substr(0, hash);
+    s = trim(s);
+    if (!s.empty()) out.emplace_back(number, std::string(s));
+  }
+  return out;
+}
+
+std::vector<Vec3> read_xyz(std::istream& in, const std::string& file) {
+  std::vector<Vec3> points;
+  for (const auto& [number, text] : content_lines(in)) {
+    const auto f = fields(text);
+    if (f.size() != 3) throw InputError(file, number, "expected exactly three coordinates");
+    points.push_back(parse_point(f, 0, file, number));
+  }
+  return points;
+}
+
+std::vector<Vec3> read_obj(std::istream& in, const std::string& file) {
+  std::vector<Vec3> points;
+  for (const auto& [number, text] : content_lines(in)) {
+    const auto f = fields(text);
+    if (f[0] == "v") points.push_back(parse_point(f, 1, file, number));
+  }
+  return points;
+}
+
+std::vector<Vec3> read_off(std::istream& in, const std::string& file) {
+  const auto lines = content_lines(in);
+  std::size_t next = 0;
+  if (next < lines.size() && lines[next].second.ends_with("OFF") &&
+      lines[next].second.size() <= 4) {
+    ++next;  // header: OFF, COFF, NOFF, …
+  } else {
+    throw InputError(file, lines.empty() ? 0 : lines[0].first, "missing OFF header");
+  }
+  if (next >= lines.size()) throw InputError(file, 0, "missing vertex/face counts");
+  const auto counts = fields(lines[next].second);
+  double nv = 0;
+  if (counts.empty() || !parse_double(counts[0], nv) || nv < 0 || nv != std::floor(nv))
+    throw InputError(file, lines[next].first, "expected the vertex count");
+  ++next;
+  std::vector<Vec3> points;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(nv); ++i, ++next) {
+    if (next >= lines.size())
+      throw InputError(file, 0, "file ends after " + std::to_string(i) + " of " +
+                                    std::to_string(static_cast<long>(nv)) + " vertices");
+    points.push_back(parse_point(fields(lines[next].second), 0, file, lines[next].first));
+  }
+  return points;
+}
+
+Vec3 json_point(const nlohmann::json& p, const char* cloud, std::size_t index) {
+  const std::string where = std::string("cloud ") + cloud + " point " + std::to_string(index);
+  if (!p.is_array() || p.size() != 3) throw std::invalid_argument(where + ": expected [x, y, z]");
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    if (!p[k].is_number()) throw std::invalid_argument(where + ": coordinate is not a number");
+    v[k] = p[k].get<double>();
+    if (!std::isfinite(v[k])) throw std::invalid_argument(where + ": non-finite coordinate");
+  }
+  return v;
+}
+
+std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
+  if (!j.contains(cloud)) throw std::invalid_argument(std::string("missing key \"") + cloud + "\"");
+  const auto& arr = j.at(cloud);
+  if (!arr.is_array())
+    throw std::invalid_argument(std::string("cloud ") + cloud + ": expected an array of points");
+  if (arr.empty()) throw std::invalid_argument(std::string("cloud ") + cloud + ": empty point cloud");
+  std::vector<Vec3> out;
+  out.reserve(arr.size());
+  for (std::size_t i = 0; i < arr.size(); ++i) out.push_back(json_point(arr[i], cloud, i));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw InputError(file, 0, "cannot open file");
+  const std::string ext = lower_extension(path);
+  std::vector<Vec3> points;
+  if (ext == ".xyz" || ext == ".txt") {
+    points = read_xyz(in, file);
+  } else if (ext == ".off") {
+    points = read_off(in, file);
+  } else if (ext == ".obj") {
+    points = read_obj(in, file);
+  } else {
+    throw InputError(file, 0, "unknown point file extension '" + ext + "' (use .xyz, .off or .obj)");
+  }
+  if (points.empty()) throw InputError(file, 0, "empty point cloud");
+  return points;
+}
+
+CaseOrError parse_case_line(std::string_view text, int line) {
+  const std::string default_id = "line " + std::to_string(line);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    return CaseError{default_id, line, std::string("malformed JSON: ") + e.what()};
+  }
+  if (!j.is_object()) return CaseError{default_id, line, "expected a JSON object"};
+  PointCase c;
+  c.id = default_id;
+  if (j.contains("id")) {
+    const auto& id = j.at("id");
+    c.id = id.is_string() ? id.get<std::string>() : id.dump();
+  }
+  try {
+    c.a = json_cloud(j, "a");
+    c.b = json_cloud(j, "b");
+  } catch (const std::invalid_argument& e) {
+    return CaseError{c.id, line, e.what()};
+  }
+  return c;
+}
+
+std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), 0, "cannot open file");
+  std::vector<CaseOrError> out;
+  std::string raw;
+  for (int number = 1; std::getline(in, raw); ++number) {
+    if (trim(raw).empty()) continue;
+    out.push_back(parse_case_line(raw, number));
+  }
+  return out;
+}
+
+std::string case_to_json_line(const PointCase& c) {
+  auto cloud = [](const std::vector<Vec3>& pts) {
+    nlohmann::json arr = nlohmann::json::array();
+    for (const Vec3& p : pts) arr.push_back({p.x(), p.y(), p.z()});
+    return arr;
+  };
+  // nlohmann writes the shortest decimal that reads back as the same double.
+  return nlohmann::json{{"id", c.id}, {"a", cloud(c.a)}, {"b", cloud(c.b)}}.dump();
+}
+
+}  // namespace gjklab::experiment

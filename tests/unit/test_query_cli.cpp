@@ -1,0 +1,136 @@
+// `gjklab query`: output format, bad-input messages and exit codes (driven in-process).
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "gjklab/cli.hpp"
+
+namespace {
+
+struct Run {
+  int status;
+  std::vector<nlohmann::json> lines;
+  std::string err;
+};
+
+Run run_cli(std::vector<std::string> args, const std::string& input = "") {
+  std::vector<const char*> argv{"gjklab"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::istringstream in(input);
+  std::ostringstream out, err;
+  Run r;
+  r.status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
+  std::istringstream lines(out.str());
+  for (std::string line; std::getline(lines, line);) r.lines.push_back(nlohmann::json::parse(line));
+  r.err = err.str();
+  return r;
+}
+
+std::string data(const char* name) { return std::string(GJKLAB_TEST_DATA_DIR) + "/" + name; }
+
+}  // namespace
+
+TEST_CASE("query two point files: one line per algorithm with the documented fields",
+          "[unit][query]") {
+  const Run r = run_cli({"query", data("tetra.xyz"), data("box_shifted.off")});
+  REQUIRE(r.status == 0);
+  REQUIRE(r.lines.size() == 5);
+  for (const auto& j : r.lines) {
+    CHECK(j.contains("id"));
+    CHECK(j["intersect"] == false);
+    CHECK(j.contains("iterations"));
+    CHECK(j.contains("termination"));
+    const std::string name = j["algorithm"];
+    const bool boolean_only = name == "gjk-bool" || name.starts_with("libccd");
+    CHECK(j.contains("distance") == !boolean_only);
+    if (!boolean_only) CHECK(j["distance"].get<double>() == 1.0);
+    if (name == "exact") {
+      CHECK(j["distance2_num"] == "1");
+      CHECK(j["distance2_den"] == "1");
+    }
+  }
+}
+
+TEST_CASE("query reads .obj vertices and selects algorithms", "[unit][query]") {
+  const Run r = run_cli({"query", data("tetra.xyz"), data("triangle_overlapping.obj"),
+                         "--algorithms", "exact,gjk-bool"});
+  REQUIRE(r.status == 0);
+  REQUIRE(r.lines.size() == 2);
+  CHECK(r.lines[0]["algorithm"] == "exact");
+  CHECK(r.lines[1]["algorithm"] == "gjk-bool");
+  CHECK(r.lines[0]["intersect"] == true);
+  CHECK(r.lines[1]["intersect"] == true);
+}
+
+TEST_CASE("query --cases: bad lines are reported and valid cases still answered",
+          "[unit][query]") {
+  const std::string cases =
+      R"({"id": "ok", "a": [[0,0,0],[1,0,0],[0,1,0]], "b": [[0,0,2],[1,1,2]]})" "\n"
+      R"({"id": "broken", "a": [[0,0,0]], "b": )" "\n"
+      "\n"
+      R"({"id": "empty", "a": [], "b": [[0,0,0]]})" "\n"
+      R"({"id": "huge", "a": [[1e999,0,0]], "b": [[0,0,0]]})" "\n"
+      R"({"id": "short", "a": [[1,2]], "b": [[0,0,0]]})" "\n"
+      R"({"a": [[0,0,0]], "b": [[0,0,0.5]]})" "\n";
+  const Run r = run_cli({"query", "--cases", "-", "--algorithms", "gjk-johnson,exact",
+                         "--threads", "2"}, cases);
+  CHECK(r.status == 1);
+  REQUIRE(r.lines.size() == 2 + 4 + 2);
+  // Input order is kept: ok (2 lines), four errors, then the id-less case named by its line.
+  CHECK(r.lines[0]["id"] == "ok");
+  CHECK(r.lines[0]["distance"] == 2.0);
+  CHECK(r.lines[1]["distance2_num"] == "4");
+  CHECK(r.lines[2]["id"] == "broken");
+  CHECK(r.lines[3]["id"] == "empty");
+  CHECK(r.lines[4]["id"] == "huge");
+  CHECK(r.lines[5]["id"] == "short");
+  for (int i = 2; i < 6; ++i) CHECK(r.lines[i].contains("error"));
+  CHECK(r.lines[6]["id"] == "line 7");
+  CHECK(r.lines[7]["distance"] == 0.5);
+  // stderr names the source, the line and the id of each problem.
+  CHECK_THAT(r.err, Catch::Contains("<stdin>:2: case 'broken': malformed JSON"));
+  CHECK_THAT(r.err, Catch::Contains("<stdin>:4: case 'empty': cloud a: empty point cloud"));
+  CHECK_THAT(r.err, Catch::Contains("<stdin>:5: case 'huge'"));
+  CHECK_THAT(r.err, Catch::Contains("<stdin>:6: case 'short': cloud a point 0: expected [x, y, z]"));
+}
+
+TEST_CASE("query: missing and malformed point files exit 1 with the file and line",
+          "[unit][query]") {
+  Run r = run_cli({"query", data("no_such_file.xyz"), data("tetra.xyz")});
+  CHECK(r.status == 1);
+  REQUIRE(r.lines.size() == 1);
+  CHECK(r.lines[0].contains("error"));
+  CHECK_THAT(r.err, Catch::Contains("no_such_file.xyz: cannot open file"));
+
+  r = run_cli({"query", data("tetra.xyz"), data("bad_nan.xyz")});
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("bad_nan.xyz:2: non-finite coordinate"));
+
+  r = run_cli({"query", data("bad_short_line.xyz"), data("tetra.xyz")});
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("bad_short_line.xyz:2: expected exactly three coordinates"));
+}
+
+TEST_CASE("query: usage errors exit 2", "[unit][query]") {
+  CHECK(run_cli({"query"}).status == 2);
+  CHECK(run_cli({"query", data("tetra.xyz")}).status == 2);
+  const Run r = run_cli({"query", data("tetra.xyz"), data("tetra.xyz"), "--algorithms", "nope"});
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("unknown algorithm 'nope'"));
+  CHECK_THAT(r.err, Catch::Contains("gjk-johnson"));
+  CHECK(run_cli({"query", data("tetra.xyz"), data("tetra.xyz"), "--threads", "0"}).status == 2);
+  CHECK(run_cli({"frobnicate"}).status == 2);
+}
+
+TEST_CASE("gjklab binary: query runs end to end with the documented exit codes", "[smoke]") {
+  const std::string bin = GJKLAB_BINARY;
+  const std::string ok = bin + " query " + data("tetra.xyz") + " " + data("box_shifted.off") +
+                         " --algorithms gjk-johnson > /dev/null 2>&1";
+  CHECK(std::system(ok.c_str()) == 0);
+  const std::string bad = bin + " query " + data("tetra.xyz") + " " + data("bad_nan.xyz") +
+                          " > /dev/null 2>&1";
+  const int status = std::system(bad.c_str());
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+}
