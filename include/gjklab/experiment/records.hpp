@@ -1,0 +1,98 @@
+// What an experiment records about each case: plain values handed from the driver to the
+// archive writer. One CaseResult per case; the writer stores them as columns.
+//
+// Conventions for the archive: lengths in the pair's world units; "relative" means divided by
+// the pair's size (the larger bounding-box diagonal of the two clouds); NaN marks a value that
+// does not apply (a boolean algorithm's distance, an untimed query's time, a depth not asked).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gjklab/geometry/types.hpp"
+#include "gjklab/gjk/termination.hpp"
+
+namespace gjklab::experiment {
+
+/// How the pair was placed relative to each other.
+enum class Placement : std::uint8_t { separated, overlapping, random };
+
+/// The exact answer's class: separated, within the touching band, or intersecting.
+/// The band is |distance| or depth ≤ touching_band · size (see ExperimentConfig).
+enum class ContactClass : std::uint8_t { separated, touching_band, intersecting };
+
+/// Which cloud generator made a shape.
+enum class ShapeKind : std::uint8_t {
+  sphere_points,  ///< points uniform on the unit sphere
+  ball_points,    ///< points uniform in the unit ball
+  cube_points,    ///< points uniform in the cube [-1, 1]^3
+  gaussian,       ///< standard normal cloud
+  box,            ///< demo box (8 vertices)
+  cone,           ///< demo cone (apex + ring)
+  cylinder,       ///< demo cylinder (two rings)
+  uv_sphere,      ///< demo UV sphere
+};
+
+/// The case as generated: everything needed to describe and regenerate it.
+struct CaseRecord {
+  std::uint64_t case_id = 0;
+  std::uint32_t family = 0;  ///< index into the experiment's [[family]] list
+  ShapeKind shape_a = ShapeKind::sphere_points;
+  ShapeKind shape_b = ShapeKind::sphere_points;
+  Placement placement = Placement::random;
+  std::int32_t vertices_a = 0;  ///< input cloud sizes
+  std::int32_t vertices_b = 0;
+  double scale = 1;             ///< the family's scale parameter
+  double size = 0;              ///< larger bounding-box diagonal of the two clouds
+  double intended_gap = 0;      ///< drawn gap (> 0) or overlap (< 0), relative to size
+};
+
+/// The exact oracle's answer for a case.
+struct ExactRecord {
+  bool intersect = false;
+  double distance = 0;              ///< nearest double of the exact distance
+  std::string distance2_num = "0";  ///< exact squared distance as a decimal rational
+  std::string distance2_den = "1";
+  double depth = std::numeric_limits<double>::quiet_NaN();  ///< NaN unless computed
+  std::int32_t hull_vertices_a = 0;
+  std::int32_t hull_vertices_b = 0;
+  ContactClass contact = ContactClass::separated;
+};
+
+/// One algorithm's answer for a case, with its error against the exact answer.
+struct AlgorithmRecord {
+  bool intersect = false;
+  double distance = std::numeric_limits<double>::quiet_NaN();  ///< NaN for boolean algorithms
+  /// |distance − exact distance| (length units) and that divided by size; NaN when either
+  /// distance is missing.
+  double abs_error = std::numeric_limits<double>::quiet_NaN();
+  double rel_error = std::numeric_limits<double>::quiet_NaN();
+  /// intersect equals the exact intersect (always true inside the touching band, where
+  /// either answer is acceptable); true when the oracle is off.
+  bool boolean_correct = true;
+  std::int32_t iterations = 0;
+  std::int32_t support_calls = 0;
+  Termination termination = Termination::converged;
+  double time_ns = std::numeric_limits<double>::quiet_NaN();  ///< median ns per query, or NaN
+};
+
+/// Both clouds of a case, kept in the archive when any answer was wrong or not converged.
+struct CaseGeometry {
+  std::vector<Vec3> a, b;
+};
+
+struct CaseResult {
+  CaseRecord record;
+  std::optional<ExactRecord> exact;         ///< absent when the oracle is off
+  std::vector<AlgorithmRecord> algorithms;  ///< in the experiment's algorithm order
+  std::optional<CaseGeometry> geometry;     ///< present for failing or degenerate cases
+};
+
+std::string_view to_string(Placement p);
+std::string_view to_string(ContactClass c);
+std::string_view to_string(ShapeKind s);
+
+}  // namespace gjklab::experiment
