@@ -1,0 +1,87 @@
+// Experiment files (TOML): what to generate, how to place it, which algorithms to run.
+//
+// The file format is documented in experiments/README.md. Every error names the file, the
+// line and the key, and lists the valid choices where there is a fixed set.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/records.hpp"
+
+namespace gjklab::experiment {
+
+/// A problem in an experiment file: "FILE:LINE: key 'KEY': PROBLEM".
+class ConfigError : public std::runtime_error {
+ public:
+  ConfigError(const std::string& file, int line, const std::string& key, const std::string& problem);
+};
+
+/// A closed interval [lo, hi]; lo == hi for a fixed value.
+struct Interval {
+  double lo = 0;
+  double hi = 0;
+};
+
+/// How the second shape is placed relative to the first, for one family.
+struct PlacementSpec {
+  /// separated: gap drawn log-uniformly from `gap`; overlapping: overlap drawn log-uniformly
+  /// from `depth`; random: B's centre uniform in a cube of half-width `spread` around A's.
+  /// `mixed` (not a Placement value): each case is overlapping with `overlapping_fraction`,
+  /// else separated.
+  std::string mode = "mixed";
+  Interval gap{1e-6, 10};      ///< relative to the pair's size
+  Interval depth{1e-6, 0.5};   ///< relative to the pair's size
+  double overlapping_fraction = 0.5;
+  double spread = 1.0;         ///< relative to the pair's size
+};
+
+/// One family of cases: the generator of both shapes and how they are placed.
+struct FamilySpec {
+  std::string name;  ///< label in summaries; defaults to the shape name
+  ShapeKind shape_a = ShapeKind::sphere_points;
+  ShapeKind shape_b = ShapeKind::sphere_points;
+  Interval vertices_a{32, 32};  ///< integer counts; a range is drawn log-uniformly
+  Interval vertices_b{32, 32};
+  double scale = 1;             ///< every coordinate is multiplied by this
+  bool rotate = true;           ///< random rotations uniform on SO(3)
+  double weight = 1;            ///< relative share of the cases
+  PlacementSpec placement;
+};
+
+/// One algorithm to run, with its options.
+struct AlgorithmSpec {
+  std::string name;
+  AlgorithmOptions options;
+};
+
+struct ExperimentConfig {
+  std::string source;   ///< the file it was read from (for messages)
+  std::string text;     ///< the file's full text (archived as provenance)
+  std::string name;
+  std::uint64_t seed = 0;
+  std::uint64_t cases = 0;
+  int threads = 1;
+  std::string output;   ///< archive path, relative to the working directory
+  bool oracle = true;   ///< run the exact oracle (needed for errors and booleans' correctness)
+  bool depth = false;   ///< also compute exact penetration depth of intersecting pairs
+  double touching_band = 1e-10;  ///< relative to size: exact answers this close count as touching
+  bool timing = false;
+  int repetitions = 5;  ///< timed repetitions per query; the median is recorded
+  std::vector<FamilySpec> families;
+  std::vector<AlgorithmSpec> algorithms;
+};
+
+/// Parses an experiment from TOML text; `source` names it in errors. Throws ConfigError.
+ExperimentConfig parse_experiment(const std::string& text, const std::string& source);
+/// Reads and parses an experiment file. Throws ConfigError (also for an unreadable file).
+ExperimentConfig load_experiment(const std::filesystem::path& path);
+
+/// (key, value) pairs of one algorithm's options as recorded in the archive.
+std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec);
+
+}  // namespace gjklab::experiment
