@@ -5,6 +5,7 @@
 
 #include "gjklab/experiment/provenance.hpp"
 #include "gjklab/query.hpp"
+#include "gjklab/run.hpp"
 
 namespace gjklab::cli {
 
@@ -15,6 +16,10 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   auto* version = app.add_subcommand("version", "print the version, build and library versions");
   QueryArgs query_args;
   auto* query = add_query_command(app, query_args);
+  RunArgs run_args;
+  auto* run_cmd = add_run_command(app, run_args);
+  InspectArgs inspect_args;
+  auto* inspect = add_inspect_command(app, inspect_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -25,6 +30,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
     return 2;
   }
   if (query->parsed()) return run_query(query_args, in, out, err);
+  if (run_cmd->parsed()) return run_experiment_command(run_args, out, err);
+  if (inspect->parsed()) return run_inspect_command(inspect_args, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance()) out << name << ": " << value << "\n";
   }

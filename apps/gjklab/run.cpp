@@ -1,0 +1,91 @@
+#include "gjklab/run.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <ostream>
+
+#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/summary.hpp"
+
+namespace gjklab::cli {
+
+CLI::App* add_run_command(CLI::App& app, RunArgs& args) {
+  CLI::App* cmd = app.add_subcommand("run", "run an experiment file and write its HDF5 archive");
+  cmd->add_option("experiment", args.experiment, "experiment file (TOML)")->required();
+  cmd->add_option("--out", args.output, "archive path (default: the file's `output`)");
+  cmd->add_option("--threads", args.threads, "worker threads (default: the file's `threads`)")
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("--cases", args.cases, "number of cases (default: the file's `cases`)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  cmd->add_flag("--force", args.force, "overwrite an existing archive");
+  return cmd;
+}
+
+CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args) {
+  CLI::App* cmd = app.add_subcommand("inspect", "print an archive's provenance and summary");
+  cmd->add_option("archive", args.archive, "HDF5 archive written by `gjklab run`")->required();
+  return cmd;
+}
+
+int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
+    experiment::RunOptions options;
+    if (!args.output.empty()) options.output = args.output;
+    if (args.threads > 0) options.threads = args.threads;
+    if (args.cases > 0) options.cases = args.cases;
+    options.force = args.force;
+    options.progress = &err;
+    options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);
+    const experiment::RunReport report = experiment::run_experiment(config, options);
+    out << "experiment '" << config.name << "': " << report.cases << " cases in "
+        << report.seconds << " s (" << static_cast<double>(report.cases) / report.seconds
+        << " cases/s), archive " << report.output.string() << "\n\n";
+    experiment::print_summary(out, report.summary);
+    return 0;
+  } catch (const experiment::ConfigError& e) {
+    err << "gjklab run: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    err << "gjklab run: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const experiment::Archive archive = experiment::read_archive(args.archive);
+    const auto& h = archive.header;
+    out << "archive: " << args.archive << " (schema " << archive.schema_version << ")\n";
+    out << "experiment: " << h.experiment_name << ", seed " << h.seed << ", "
+        << archive.results.size() << " of " << h.cases_planned << " cases, "
+        << (archive.complete ? "complete" : "INCOMPLETE") << "\n";
+    out << "run: " << h.start_time << " to " << archive.end_time << "\n";
+    for (const auto& [key, value] : h.provenance) out << key << ": " << value << "\n";
+    for (std::size_t i = 0; i < h.algorithm_names.size(); ++i) {
+      out << "options " << h.algorithm_names[i] << ":";
+      for (const auto& [key, value] : h.algorithm_options[i]) out << " " << key << "=" << value;
+      out << "\n";
+    }
+    out << "\n";
+    experiment::SummaryBuilder summary(h.algorithm_names);
+    std::size_t kept = 0;
+    for (const auto& r : archive.results) {
+      summary.add(r);
+      kept += r.geometry.has_value();
+    }
+    experiment::print_summary(out, summary.build());
+    out << kept << " cases keep their geometry (wrong or not converged)\n";
+    return 0;
+  } catch (const std::exception& e) {
+    err << "gjklab inspect: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace gjklab::cli

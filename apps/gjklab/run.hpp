@@ -1,0 +1,33 @@
+// `gjklab run` (an experiment file to an HDF5 archive) and `gjklab inspect` (an archive's
+// provenance and summary).
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace gjklab::cli {
+
+struct RunArgs {
+  std::string experiment;
+  std::string output;      ///< empty: the file's `output`
+  int threads = 0;         ///< 0: the file's `threads`
+  std::uint64_t cases = 0; ///< 0: the file's `cases`
+  bool force = false;
+};
+
+struct InspectArgs {
+  std::string archive;
+};
+
+CLI::App* add_run_command(CLI::App& app, RunArgs& args);
+CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args);
+
+int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream& err);
+int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream& err);
+
+}  // namespace gjklab::cli

@@ -1,0 +1,45 @@
+// The experiment driver: generates every case, runs the oracle and each algorithm on it,
+// computes the metrics and streams the records to the archive, on several threads.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/records.hpp"
+#include "gjklab/experiment/summary.hpp"
+
+namespace gjklab::experiment {
+
+/// Command-line overrides and where progress goes.
+struct RunOptions {
+  std::optional<std::string> output;
+  std::optional<int> threads;
+  std::optional<std::uint64_t> cases;
+  bool force = false;                ///< overwrite an existing output file
+  std::ostream* progress = nullptr;  ///< progress lines (stderr), or none
+  bool live_progress = false;        ///< rewrite one line in place (a terminal)
+};
+
+struct RunReport {
+  std::filesystem::path output;
+  RunSummary summary;
+  double seconds = 0;
+  std::uint64_t cases = 0;
+};
+
+/// Everything the run records about case `case_id`: a pure function of (config, case_id)
+/// apart from the timing columns.
+CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id);
+
+/// Runs the experiment and writes the archive. Throws ArchiveError before any work when the
+/// output exists (without force) or cannot be written.
+RunReport run_experiment(const ExperimentConfig& config, const RunOptions& options);
+
+/// The current UTC time as ISO 8601 ("2026-01-31T12:00:00Z").
+std::string utc_now();
+
+}  // namespace gjklab::experiment

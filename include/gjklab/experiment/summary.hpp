@@ -1,0 +1,56 @@
+// Per-algorithm summary of a run: what `gjklab run` prints at the end and `gjklab inspect`
+// prints for an archive.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "gjklab/experiment/records.hpp"
+
+namespace gjklab::experiment {
+
+struct AlgorithmSummary {
+  std::string name;
+  std::uint64_t cases = 0;
+  std::uint64_t wrong_booleans = 0;   ///< !boolean_correct (outside the touching band)
+  std::uint64_t distances = 0;        ///< cases with a distance error (distance algorithms)
+  double rel_error_median = 0, rel_error_p99 = 0, rel_error_max = 0;  ///< relative to size
+  std::array<std::uint64_t, kAllTerminations.size()> terminations{};  ///< by Termination value
+  double iterations_mean = 0;
+  std::int32_t iterations_max = 0;
+  std::uint64_t timed = 0;            ///< cases with a time
+  double time_ns_median = 0;          ///< median over cases of the per-case median time
+};
+
+struct RunSummary {
+  std::uint64_t cases = 0;
+  std::array<std::uint64_t, 3> contact{};  ///< cases per ContactClass (oracle on)
+  std::vector<AlgorithmSummary> algorithms;
+};
+
+/// Accumulates results case by case (memory: a few numbers per case and algorithm).
+class SummaryBuilder {
+ public:
+  explicit SummaryBuilder(std::vector<std::string> algorithm_names);
+  void add(const CaseResult& result);
+  RunSummary build() const;
+
+ private:
+  struct Column {
+    std::vector<double> rel_errors;
+    std::vector<double> times;
+    double iteration_sum = 0;
+    AlgorithmSummary counts;
+  };
+  std::uint64_t cases_ = 0;
+  std::array<std::uint64_t, 3> contact_{};
+  std::vector<Column> columns_;
+};
+
+/// Prints the summary as an aligned text table.
+void print_summary(std::ostream& out, const RunSummary& summary);
+
+}  // namespace gjklab::experiment

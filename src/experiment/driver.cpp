@@ -1,0 +1,251 @@
+#include "gjklab/experiment/driver.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <ostream>
+#include <thread>
+
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/provenance.hpp"
+
+namespace gjklab::experiment {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Cases evaluated in parallel before the batch is written in case order.
+constexpr std::uint64_t kBatchCases = 512;
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+ContactClass classify(const exact::OracleAnswer& answer, double band) {
+  if (!answer.intersect) return answer.distance <= band ? ContactClass::touching_band
+                                                        : ContactClass::separated;
+  if (answer.depth && *answer.depth <= band) return ContactClass::touching_band;
+  return ContactClass::intersecting;
+}
+
+ExactRecord exact_record(const exact::OracleAnswer& a, double band) {
+  ExactRecord r;
+  r.intersect = a.intersect;
+  r.distance = a.distance;
+  r.distance2_num = a.distance_squared.numerator;
+  r.distance2_den = a.distance_squared.denominator;
+  if (a.depth) r.depth = *a.depth;
+  r.hull_vertices_a = a.hull_vertices_a;
+  r.hull_vertices_b = a.hull_vertices_b;
+  r.contact = classify(a, band);
+  return r;
+}
+
+/// Median wall time of `repetitions` runs of one query, in ns.
+double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                  const AlgorithmOptions& options, int repetitions) {
+  std::vector<double> ns;
+  ns.reserve(repetitions);
+  for (int r = 0; r < repetitions; ++r) {
+    const auto start = Clock::now();
+    const Outcome o = algorithm.run(a, b, options);
+    const auto stop = Clock::now();
+    if (o.iterations < 0) break;  // keeps the call from being optimised away
+    ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
+  }
+  return median(std::move(ns));
+}
+
+AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactRecord>& exact,
+                                 double size) {
+  AlgorithmRecord r;
+  r.intersect = o.intersect;
+  if (o.distance) r.distance = *o.distance;
+  r.iterations = o.iterations;
+  r.support_calls = o.support_calls;
+  r.termination = o.termination;
+  if (exact) {
+    if (o.distance) {
+      r.abs_error = std::abs(*o.distance - exact->distance);
+      r.rel_error = r.abs_error / size;
+    }
+    r.boolean_correct =
+        exact->contact == ContactClass::touching_band || o.intersect == exact->intersect;
+  }
+  return r;
+}
+
+/// A case is kept with its geometry when any answer is wrong or any query did not converge.
+bool worth_keeping(const CaseResult& r, double band) {
+  for (const AlgorithmRecord& a : r.algorithms) {
+    if (!a.boolean_correct || a.termination != Termination::converged) return true;
+    if (!std::isnan(a.rel_error) && a.rel_error > band) return true;
+  }
+  return false;
+}
+
+class Progress {
+ public:
+  Progress(std::ostream* out, bool live, std::uint64_t total)
+      : out_(out), live_(live), total_(total), start_(Clock::now()), last_(start_) {}
+
+  void update(std::uint64_t done, bool final = false) {
+    if (!out_) return;
+    const auto now = Clock::now();
+    const double since_last = std::chrono::duration<double>(now - last_).count();
+    if (!final && since_last < (live_ ? 0.25 : 10.0)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0;
+    const double left = rate > 0 ? static_cast<double>(total_ - done) / rate : 0;
+    char line[160];
+    std::snprintf(line, sizeof line, "%llu/%llu cases (%.1f%%), %.0f cases/s, %.0f s left",
+                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),
+                  total_ ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0,
+                  rate, left);
+    if (live_) {
+      *out_ << "\r" << line << "\x1b[K" << (final ? "\n" : "") << std::flush;
+    } else {
+      *out_ << line << "\n" << std::flush;
+    }
+  }
+
+ private:
+  std::ostream* out_;
+  bool live_;
+  std::uint64_t total_;
+  Clock::time_point start_, last_;
+};
+
+ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases) {
+  ArchiveHeader h;
+  h.experiment_name = config.name;
+  h.experiment_text = config.text;
+  h.seed = config.seed;
+  h.cases_planned = cases;
+  h.start_time = utc_now();
+  h.provenance = build_provenance();
+  for (const FamilySpec& f : config.families) h.family_names.push_back(f.name);
+  for (const AlgorithmSpec& a : config.algorithms) {
+    h.algorithm_names.push_back(a.name);
+    h.algorithm_options.push_back(describe_options(a));
+  }
+  h.oracle = config.oracle;
+  h.touching_band = config.touching_band;
+  return h;
+}
+
+}  // namespace
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) {
+  GeneratedCase generated = generate_case(config, case_id);
+  CaseResult result;
+  result.record = generated.record;
+  const Polytope a(generated.a), b(generated.b);
+  const double size = generated.record.size;
+  const double band = config.touching_band * size;
+
+  std::optional<exact::OracleAnswer> answer;
+  if (config.oracle) {
+    answer = exact::solve(a.vertices(), b.vertices(), {.depth = config.depth});
+    result.exact = exact_record(*answer, band);
+  }
+  std::vector<Outcome> outcomes;
+  for (const AlgorithmSpec& spec : config.algorithms) {
+    const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
+    outcomes.push_back(algorithm.run(a, b, spec.options));
+    result.algorithms.push_back(algorithm_record(outcomes.back(), result.exact, size));
+    if (config.timing)
+      result.algorithms.back().time_ns =
+          time_query(algorithm, a, b, spec.options, config.repetitions);
+  }
+  // A boolean that disagrees with an intersecting exact answer may be inside the touching
+  // band; only the exact depth can tell, so compute it now if it was not asked for.
+  if (answer && answer->intersect && !answer->depth) {
+    const bool disagreement = std::any_of(result.algorithms.begin(), result.algorithms.end(),
+                                          [](const AlgorithmRecord& r) { return !r.intersect; });
+    if (disagreement) {
+      answer = exact::solve(a.vertices(), b.vertices(), {.depth = true});
+      result.exact = exact_record(*answer, band);
+      for (std::size_t i = 0; i < outcomes.size(); ++i) {
+        const double time_ns = result.algorithms[i].time_ns;
+        result.algorithms[i] = algorithm_record(outcomes[i], result.exact, size);
+        result.algorithms[i].time_ns = time_ns;
+      }
+    }
+  }
+  if (worth_keeping(result, config.touching_band))
+    result.geometry = CaseGeometry{std::move(generated.a), std::move(generated.b)};
+  return result;
+}
+
+RunReport run_experiment(const ExperimentConfig& config, const RunOptions& options) {
+  RunReport report;
+  report.output = options.output.value_or(config.output);
+  const std::uint64_t total = options.cases.value_or(config.cases);
+  const int threads = std::max(1, options.threads.value_or(config.threads));
+  ArchiveWriter writer(report.output, archive_header(config, total), options.force);
+
+  std::vector<std::string> names;
+  for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.name);
+  SummaryBuilder summary(names);
+  Progress progress(options.progress, options.live_progress, total);
+  const auto start = Clock::now();
+
+  std::vector<CaseResult> batch;
+  for (std::uint64_t first = 0; first < total; first += kBatchCases) {
+    const std::uint64_t count = std::min(kBatchCases, total - first);
+    batch.assign(count, CaseResult{});
+    std::atomic<std::uint64_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    auto worker = [&] {
+      for (std::uint64_t i = next++; i < count; i = next++) {
+        try {
+          batch[i] = evaluate_case(config, first + i);
+        } catch (const std::exception& e) {
+          const std::lock_guard lock(failure_mutex);
+          if (!failure)
+            failure = std::make_exception_ptr(
+                std::runtime_error("case " + std::to_string(first + i) + ": " + e.what()));
+          next = count;  // stop the other workers early
+        }
+      }
+    };
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    pool.clear();  // joins
+    // The archive keeps its temporary name: nothing that looks complete is left behind.
+    if (failure) std::rethrow_exception(failure);
+    writer.append(batch);
+    for (const CaseResult& r : batch) summary.add(r);
+    progress.update(first + count);
+  }
+  progress.update(total, true);
+  writer.finish(utc_now(), true);
+  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  report.summary = summary.build();
+  report.cases = total;
+  return report;
+}
+
+}  // namespace gjklab::experiment

@@ -1,0 +1,108 @@
+#include "gjklab/experiment/summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+namespace gjklab::experiment {
+
+namespace {
+
+/// The q-quantile (0 ≤ q ≤ 1) by the nearest-rank method; 0 for an empty sample.
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0;
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  const std::size_t index = std::min(values.size() - 1, rank == 0 ? 0 : rank - 1);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
+                   values.end());
+  return values[index];
+}
+
+std::string format(const char* fmt, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, value);
+  return buf;
+}
+
+}  // namespace
+
+SummaryBuilder::SummaryBuilder(std::vector<std::string> algorithm_names) {
+  for (std::string& name : algorithm_names) {
+    Column c;
+    c.counts.name = std::move(name);
+    columns_.push_back(std::move(c));
+  }
+}
+
+void SummaryBuilder::add(const CaseResult& result) {
+  ++cases_;
+  if (result.exact) ++contact_[static_cast<std::size_t>(result.exact->contact)];
+  for (std::size_t i = 0; i < columns_.size() && i < result.algorithms.size(); ++i) {
+    const AlgorithmRecord& r = result.algorithms[i];
+    Column& c = columns_[i];
+    ++c.counts.cases;
+    if (!r.boolean_correct) ++c.counts.wrong_booleans;
+    if (!std::isnan(r.rel_error)) c.rel_errors.push_back(r.rel_error);
+    if (!std::isnan(r.time_ns)) c.times.push_back(r.time_ns);
+    ++c.counts.terminations[static_cast<std::size_t>(r.termination)];
+    c.iteration_sum += r.iterations;
+    c.counts.iterations_max = std::max(c.counts.iterations_max, r.iterations);
+  }
+}
+
+RunSummary SummaryBuilder::build() const {
+  RunSummary s;
+  s.cases = cases_;
+  s.contact = contact_;
+  for (const Column& c : columns_) {
+    AlgorithmSummary a = c.counts;
+    a.distances = c.rel_errors.size();
+    a.rel_error_median = quantile(c.rel_errors, 0.5);
+    a.rel_error_p99 = quantile(c.rel_errors, 0.99);
+    a.rel_error_max = c.rel_errors.empty() ? 0 : *std::max_element(c.rel_errors.begin(), c.rel_errors.end());
+    a.iterations_mean = a.cases ? c.iteration_sum / static_cast<double>(a.cases) : 0;
+    a.timed = c.times.size();
+    a.time_ns_median = quantile(c.times, 0.5);
+    s.algorithms.push_back(std::move(a));
+  }
+  return s;
+}
+
+void print_summary(std::ostream& out, const RunSummary& s) {
+  out << s.cases << " cases";
+  if (s.contact[0] + s.contact[1] + s.contact[2] > 0) {
+    out << " (exact: " << s.contact[0] << " separated, " << s.contact[1] << " touching band, "
+        << s.contact[2] << " intersecting)";
+  }
+  out << "\n\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "%-14s %8s %8s %10s %10s %10s %8s %6s %10s\n", "algorithm",
+                "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean", "it_max",
+                "ns/query");
+  out << line;
+  for (const AlgorithmSummary& a : s.algorithms) {
+    const bool has_distance = a.distances > 0;
+    std::snprintf(line, sizeof line, "%-14s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n",
+                  a.name.c_str(), static_cast<unsigned long long>(a.cases),
+                  static_cast<unsigned long long>(a.wrong_booleans),
+                  has_distance ? format("%.2e", a.rel_error_median).c_str() : "-",
+                  has_distance ? format("%.2e", a.rel_error_p99).c_str() : "-",
+                  has_distance ? format("%.2e", a.rel_error_max).c_str() : "-", a.iterations_mean,
+                  a.iterations_max, a.timed ? format("%.0f", a.time_ns_median).c_str() : "-");
+    out << line;
+  }
+  out << "\nterminations:\n";
+  for (const AlgorithmSummary& a : s.algorithms) {
+    out << "  " << a.name << ":";
+    for (Termination t : kAllTerminations) {
+      const auto n = a.terminations[static_cast<std::size_t>(t)];
+      if (n > 0) out << " " << to_string(t) << "=" << n;
+    }
+    out << "\n";
+  }
+  out << "(errors are |distance − exact| / size, size = larger bounding-box diagonal; "
+         "wrong = boolean differs from the exact one outside the touching band)\n";
+}
+
+}  // namespace gjklab::experiment
