@@ -2,7 +2,13 @@
 // and compressed, enums as HDF5 enum types. Schema: results/README.md.
 //
 // A run writes to "<output>.tmp" in the same folder and renames it to the final name only when
-// complete, so a file with the final name is always whole.
+// complete, so a file with the final name is always whole. The root attribute `complete` is
+// written last, by finish(); a file without it (or with 0) holds an incomplete run.
+//
+// HDF5's serial build is not thread-safe: one writer, and every read_archive call, must be used
+// from one thread at a time (the driver collects results from its workers and writes them from
+// one thread). Both turn off HDF5's automatic error printing for the process; every failing
+// HDF5 call becomes an ArchiveError naming the file and the dataset or attribute.
 #pragma once
 
 #include <cstdint>
@@ -41,20 +47,32 @@ struct ArchiveHeader {
   double touching_band = 1e-10;
 };
 
+/// Writes one archive. Not thread-safe (see above): use it from one thread.
 class ArchiveWriter {
  public:
-  /// Creates the temporary file next to final_path. Throws ArchiveError, naming the path,
-  /// if final_path exists and !overwrite, or if the folder is not writable.
+  /// Checks before any work, then creates "<final_path>.tmp" (replacing a stale one) and writes
+  /// the header as root attributes and the empty columns. Throws ArchiveError, naming the path,
+  /// if final_path exists and !overwrite ("FILE exists (use --force to overwrite)"), if its
+  /// folder is missing or not writable, or if the header cannot be stored (an algorithm name
+  /// that is not a valid group name, a provenance key that is a root attribute's name,
+  /// duplicate names); nothing is left behind then.
   ArchiveWriter(const std::filesystem::path& final_path, const ArchiveHeader& header,
                 bool overwrite);
-  ~ArchiveWriter();  ///< an unfinished writer closes the temporary file and leaves it
+  /// An unfinished writer closes the temporary file and leaves it under its temporary name
+  /// (no end_time, no complete flag); read_archive still reads it.
+  ~ArchiveWriter();
   ArchiveWriter(const ArchiveWriter&) = delete;
   ArchiveWriter& operator=(const ArchiveWriter&) = delete;
 
-  /// Appends results (in case-id order) to every column.
+  /// Appends results (in case-id order) to every column, extending each by results.size().
+  /// Each result must hold one AlgorithmRecord per header algorithm, and an ExactRecord exactly
+  /// when the header's oracle is on; a batch that does not is refused whole, before anything
+  /// is written. Geometry, where present, goes to /geometry.
   void append(std::span<const CaseResult> results);
-  /// Writes the end time and the completion flag (last), closes the file and, when complete,
-  /// renames it to the final path. An incomplete run keeps the temporary name.
+  /// Writes end_time, flushes the file, writes `complete` (last), closes the file and, when
+  /// complete, renames it to the final path (replacing an existing file only if overwrite was
+  /// asked). An incomplete run keeps the temporary name with complete = 0. Call it once; after
+  /// a failed append, finish(…, true) records complete = 0 and throws.
   void finish(const std::string& end_time, bool complete);
 
   const std::filesystem::path& temporary_path() const;
@@ -67,14 +85,15 @@ class ArchiveWriter {
 /// A whole archive read back into memory.
 struct Archive {
   int schema_version = 0;
-  ArchiveHeader header;
-  std::string end_time;
-  bool complete = false;
+  ArchiveHeader header;  ///< algorithm_options has one entry per algorithm
+  std::string end_time;  ///< empty when the run stopped before finish()
+  bool complete = false;  ///< false when the flag is 0 or absent
   std::vector<CaseResult> results;  ///< geometry filled for the cases that kept it
 };
 
-/// Reads an archive written by ArchiveWriter. Throws ArchiveError naming the file and the
-/// missing or malformed dataset.
+/// Reads an archive written by ArchiveWriter, complete or not (a "<output>.tmp" file too).
+/// Throws ArchiveError naming the file and the missing or malformed group, dataset or
+/// attribute (or an unsupported schema_version).
 Archive read_archive(const std::filesystem::path& path);
 
 }  // namespace gjklab::experiment
