@@ -33,7 +33,7 @@ struct PlacementSpec {
   /// from `depth`; random: B's centre uniform in a cube of half-width `spread` around A's.
   /// `mixed` (not a Placement value): each case is overlapping with `overlapping_fraction`,
   /// else separated.
-  std::string mode = "mixed";
+  std::string mode = "mixed";  ///< "separated", "overlapping", "mixed" or "random"
   Interval gap{1e-6, 10};      ///< relative to the pair's size
   Interval depth{1e-6, 0.5};   ///< relative to the pair's size
   double overlapping_fraction = 0.5;
@@ -45,7 +45,10 @@ struct FamilySpec {
   std::string name;  ///< label in summaries; defaults to the shape name
   ShapeKind shape_a = ShapeKind::sphere_points;
   ShapeKind shape_b = ShapeKind::sphere_points;
-  Interval vertices_a{32, 32};  ///< integer counts; a range is drawn log-uniformly
+  /// Requested vertex counts (integers); a range is drawn log-uniformly per case. The parser's
+  /// default depends on the shape: 32 for the point clouds, 8/33/64/482 for box, cone,
+  /// cylinder and uv_sphere.
+  Interval vertices_a{32, 32};
   Interval vertices_b{32, 32};
   double scale = 1;             ///< every coordinate is multiplied by this
   bool rotate = true;           ///< random rotations uniform on SO(3)

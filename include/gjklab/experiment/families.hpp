@@ -13,14 +13,25 @@ namespace gjklab::experiment {
 struct GeneratedCase {
   CaseRecord record;
   std::vector<Vec3> a, b;  ///< both clouds in world coordinates, as every algorithm sees them
+  /// The unit placement axis u of a separated or overlapping case (B was moved along u so that
+  /// its extent along u starts intended_gap·size after A's ends); zero for random placement.
+  Vec3 direction = Vec3::Zero();
 };
 
-/// Generates case `case_id` of the experiment (family drawn by weight, then shapes, rotations,
-/// scale and placement), using GSL's random number generators seeded from (seed, case_id).
+/// The 32-bit seed of case `case_id`'s GSL generator (gsl_rng_mt19937): the experiment seed is
+/// mixed by splitmix64 into a key, and the case id goes through a keyed bijection of 32-bit
+/// integers, so the case ids 0 … 2^32 − 1 of one experiment get pairwise different seeds.
+std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id);
+
+/// Generates case `case_id` of the experiment (family drawn by weight, then vertex counts,
+/// shapes, rotations, scale and placement), from a GSL generator seeded by
+/// case_stream_seed(seed, case_id) alone: the same case whatever else was generated before.
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id);
 
-/// Points of one generator (before rotation, scale and placement); `n` is the requested vertex
-/// count (the demo shapes may round it, see geometry/shapes.hpp).
+/// Points of one generator (before rotation, scale and placement); `n` (>= 1) is the requested
+/// vertex count. The point generators give exactly n points; the demo shapes adjust it: box has
+/// 8 vertices whatever n, cone(max(n, 4)), cylinder(n rounded up to even, at least 6) and
+/// uv_sphere(max(n, 6)), which rounds down (see geometry/shapes.hpp). `gsl_rng` is a gsl_rng*.
 std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng);
 
 }  // namespace gjklab::experiment

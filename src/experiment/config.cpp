@@ -1,0 +1,593 @@
+#include "gjklab/experiment/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <iterator>
+#include <string_view>
+#include <system_error>
+
+namespace gjklab::experiment {
+
+namespace {
+
+std::string format_message(const std::string& file, int line, const std::string& key,
+                           const std::string& problem) {
+  std::string message = file;
+  if (line > 0) message += ":" + std::to_string(line);
+  message += ": ";
+  if (!key.empty()) message += "key '" + key + "': ";
+  message += problem;
+  return message;
+}
+
+}  // namespace
+
+ConfigError::ConfigError(const std::string& file, int line, const std::string& key,
+                         const std::string& problem)
+    : std::runtime_error(format_message(file, line, key, problem)) {}
+
+namespace {
+
+// ---- limits that are not in the header ----
+constexpr std::int64_t kMaxThreads = 1024;
+constexpr std::int64_t kMaxCases = std::int64_t{1} << 32;  // case ids index 2^32 seed streams
+constexpr std::int64_t kMaxVertices = 10'000'000;
+constexpr std::int64_t kMaxRepetitions = 1'000'000;
+constexpr double kMinScale = 1e-100;  // keeps squared lengths far from underflow and overflow
+constexpr double kMaxScale = 1e100;
+
+constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random"};
+constexpr ShapeKind kShapeKinds[] = {
+    ShapeKind::sphere_points, ShapeKind::ball_points, ShapeKind::cube_points,
+    ShapeKind::gaussian,      ShapeKind::box,         ShapeKind::cone,
+    ShapeKind::cylinder,      ShapeKind::uv_sphere,
+};
+
+template <typename Range>
+std::string join(const Range& items) {
+  std::string out;
+  for (const auto& item : items) {
+    if (!out.empty()) out += ", ";
+    out += std::string_view(item);
+  }
+  return out;
+}
+
+std::string shape_names() {
+  std::vector<std::string_view> names;
+  for (ShapeKind k : kShapeKinds) names.push_back(to_string(k));
+  return join(names);
+}
+
+/// Shortest decimal text that reads back as the same double.
+std::string round_trip(double x) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  if (ec != std::errc()) return std::to_string(x);
+  return std::string(buffer, end);
+}
+
+std::string_view type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    case toml::node_type::none: break;
+  }
+  return "nothing";
+}
+
+int line_of(const toml::source_region& region) {
+  return region.begin.line > 0 ? static_cast<int>(region.begin.line) : 1;
+}
+int line_of(const toml::node& node) { return line_of(node.source()); }
+
+/// One TOML table being read: checks unknown keys up front, then reads typed, range-checked
+/// values and reports problems as ConfigError with the dotted key path and the value's line.
+class Section {
+ public:
+  Section(const std::string& file, const toml::table& table, std::string path, int header_line)
+      : file_(file), table_(table), path_(std::move(path)), header_line_(header_line) {}
+
+  const toml::table& table() const { return table_; }
+  const std::string& path() const { return path_; }
+  int header_line() const { return header_line_; }
+
+  std::string key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+
+  [[noreturn]] void fail(int line, std::string_view key, const std::string& problem) const {
+    throw ConfigError(file_, line, key_path(key), problem);
+  }
+  [[noreturn]] void fail(const toml::node& node, std::string_view key,
+                         const std::string& problem) const {
+    fail(line_of(node), key, problem);
+  }
+  [[noreturn]] void missing(std::string_view key, const std::string& what = {}) const {
+    fail(header_line_, key, what.empty() ? "missing (required)" : what);
+  }
+
+  /// Rejects every key not in `allowed` (the first one in file order). `explain` may turn an
+  /// unknown key into a more specific message (e.g. a key that belongs to another algorithm).
+  template <typename Explain>
+  void allow_only(const std::vector<std::string_view>& allowed, Explain explain) const {
+    const toml::key* first = nullptr;
+    for (auto&& [key, value] : table_) {
+      (void)value;
+      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+      if (!first || key.source().begin.line < first->source().begin.line) first = &key;
+    }
+    if (!first) return;
+    std::string problem = explain(first->str());
+    if (problem.empty()) problem = "unknown key; valid: " + join(allowed);
+    fail(line_of(first->source()), first->str(), problem);
+  }
+  void allow_only(const std::vector<std::string_view>& allowed) const {
+    allow_only(allowed, [](std::string_view) { return std::string(); });
+  }
+
+  const toml::node* find(std::string_view key) const { return table_.get(key); }
+
+  /// The section of a nested table, named `path` (a dotted key path) in messages.
+  Section child(const toml::table& table, std::string path) const {
+    return Section(file_, table, std::move(path), line_of(table));
+  }
+
+  std::optional<std::string> string(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_string())
+      fail(*node, key, "expected a string, got " + std::string(type_name(*node)));
+    return node->as_string()->get();
+  }
+
+  std::optional<bool> boolean(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean())
+      fail(*node, key, "expected a boolean (true or false), got " + std::string(type_name(*node)));
+    return node->as_boolean()->get();
+  }
+
+  /// An integer in [lo, hi].
+  std::optional<std::int64_t> integer(std::string_view key, std::int64_t lo,
+                                      std::int64_t hi) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    return integer_value(*node, key, lo, hi);
+  }
+
+  std::int64_t integer_value(const toml::node& node, std::string_view key, std::int64_t lo,
+                             std::int64_t hi) const {
+    if (!node.is_integer())
+      fail(node, key, "expected an integer, got " + std::string(type_name(node)));
+    const std::int64_t v = node.as_integer()->get();
+    if (v < lo || v > hi) {
+      if (hi == std::numeric_limits<std::int64_t>::max())
+        fail(node, key, "must be at least " + std::to_string(lo) + ", got " + std::to_string(v));
+      fail(node, key,
+           "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " +
+               std::to_string(v));
+    }
+    return v;
+  }
+
+  /// A finite number (an integer is accepted and converted).
+  double number_value(const toml::node& node, std::string_view key) const {
+    double v = 0;
+    if (node.is_floating_point())
+      v = node.as_floating_point()->get();
+    else if (node.is_integer())
+      v = static_cast<double>(node.as_integer()->get());
+    else
+      fail(node, key, "expected a number, got " + std::string(type_name(node)));
+    if (!std::isfinite(v)) fail(node, key, "must be finite, got " + round_trip(v));
+    return v;
+  }
+
+  std::optional<double> positive(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const double v = number_value(*node, key);
+    if (!(v > 0)) fail(*node, key, "must be > 0, got " + round_trip(v));
+    return v;
+  }
+
+  std::optional<double> non_negative(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const double v = number_value(*node, key);
+    if (!(v >= 0)) fail(*node, key, "must be >= 0, got " + round_trip(v));
+    return v;
+  }
+
+  std::optional<double> fraction(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const double v = number_value(*node, key);
+    if (!(v >= 0 && v <= 1)) fail(*node, key, "must be between 0 and 1, got " + round_trip(v));
+    return v;
+  }
+
+  /// A positive number or a [lo, hi] pair with 0 < lo <= hi.
+  std::optional<Interval> positive_interval(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    Interval interval;
+    if (const toml::array* array = node->as_array()) {
+      if (array->size() != 2)
+        fail(*node, key, "expected [lo, hi] (two numbers), got " + std::to_string(array->size()) +
+                             " elements");
+      interval.lo = number_value(*array->get(0), key);
+      interval.hi = number_value(*array->get(1), key);
+    } else if (node->is_number()) {
+      interval.lo = interval.hi = number_value(*node, key);
+    } else {
+      fail(*node, key, "expected a number or [lo, hi], got " + std::string(type_name(*node)));
+    }
+    if (!(interval.lo > 0))
+      fail(*node, key, "lower bound must be > 0, got " + round_trip(interval.lo));
+    if (!(interval.lo <= interval.hi))
+      fail(*node, key,
+           "lower bound " + round_trip(interval.lo) + " exceeds upper bound " +
+               round_trip(interval.hi));
+    return interval;
+  }
+
+  /// An integer count or a [lo, hi] pair of counts with 1 <= lo <= hi <= kMaxVertices.
+  std::optional<Interval> count_interval(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    Interval interval;
+    if (const toml::array* array = node->as_array()) {
+      if (array->size() != 2)
+        fail(*node, key, "expected [lo, hi] (two integers), got " + std::to_string(array->size()) +
+                             " elements");
+      interval.lo = static_cast<double>(integer_value(*array->get(0), key, 1, kMaxVertices));
+      interval.hi = static_cast<double>(integer_value(*array->get(1), key, 1, kMaxVertices));
+      if (interval.lo > interval.hi)
+        fail(*node, key,
+             "lower bound " + std::to_string(static_cast<std::int64_t>(interval.lo)) +
+                 " exceeds upper bound " + std::to_string(static_cast<std::int64_t>(interval.hi)));
+    } else if (node->is_integer()) {
+      interval.lo = interval.hi = static_cast<double>(integer_value(*node, key, 1, kMaxVertices));
+    } else {
+      fail(*node, key, "expected an integer or [lo, hi], got " + std::string(type_name(*node)));
+    }
+    return interval;
+  }
+
+  /// A sub-table (either [a.b] or an inline table), or nullptr if absent.
+  const toml::table* subtable(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    if (!node->is_table())
+      fail(*node, key, "expected a table, got " + std::string(type_name(*node)));
+    return node->as_table();
+  }
+
+  /// An array of tables ([[key]]); its elements must all be tables.
+  const toml::array* table_array(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    const toml::array* array = node->as_array();
+    if (!array)
+      fail(*node, key,
+           "expected an array of tables ([[" + std::string(key) + "]]), got " +
+               std::string(type_name(*node)));
+    for (std::size_t i = 0; i < array->size(); ++i)
+      if (!array->get(i)->is_table())
+        fail(*array->get(i), std::string(key) + "[" + std::to_string(i) + "]",
+             "expected a table, got " + std::string(type_name(*array->get(i))));
+    return array;
+  }
+
+ private:
+  const std::string& file_;
+  const toml::table& table_;
+  std::string path_;
+  int header_line_;
+};
+
+std::optional<ShapeKind> shape_from_name(std::string_view name) {
+  for (ShapeKind k : kShapeKinds)
+    if (to_string(k) == name) return k;
+  return std::nullopt;
+}
+
+ShapeKind read_shape(const Section& s, std::string_view key) {
+  const std::string name = *s.string(key);
+  if (const auto kind = shape_from_name(name)) return *kind;
+  s.fail(*s.find(key), key, "unknown shape '" + name + "'; valid: " + shape_names());
+}
+
+/// The vertex count a shape gets when the family does not say.
+Interval default_vertices(ShapeKind kind) {
+  double n = 32;
+  switch (kind) {
+    case ShapeKind::box: n = 8; break;
+    case ShapeKind::cone: n = 33; break;
+    case ShapeKind::cylinder: n = 64; break;
+    case ShapeKind::uv_sphere: n = 482; break;
+    default: break;
+  }
+  return {n, n};
+}
+
+/// Reads [placement] keys from `s` on top of `base`.
+PlacementSpec read_placement(const Section& s, PlacementSpec base) {
+  s.allow_only({"mode", "gap", "depth", "overlapping_fraction", "spread"});
+  if (const auto mode = s.string("mode")) {
+    if (std::find(std::begin(kPlacementModes), std::end(kPlacementModes), *mode) ==
+        std::end(kPlacementModes))
+      s.fail(*s.find("mode"), "mode",
+             "unknown placement mode '" + *mode + "'; valid: " + join(kPlacementModes));
+    base.mode = *mode;
+  }
+  if (const auto gap = s.positive_interval("gap")) base.gap = *gap;
+  if (const auto depth = s.positive_interval("depth")) base.depth = *depth;
+  if (const auto f = s.fraction("overlapping_fraction")) base.overlapping_fraction = *f;
+  if (const auto spread = s.positive("spread")) base.spread = *spread;
+  return base;
+}
+
+FamilySpec read_family(const Section& s, const PlacementSpec& placement) {
+  s.allow_only({"name", "shape", "shape_a", "shape_b", "vertices", "vertices_a", "vertices_b",
+                "scale", "rotate", "weight", "placement"});
+  FamilySpec f;
+  const bool has_shape = s.find("shape") != nullptr;
+  for (std::string_view key : {"shape_a", "shape_b"})
+    if (has_shape && s.find(key))
+      s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
+  if (has_shape) {
+    f.shape_a = f.shape_b = read_shape(s, "shape");
+  } else if (s.find("shape_a") || s.find("shape_b")) {
+    if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
+    if (!s.find("shape_b")) s.missing("shape_b", "missing (shape_a is given without shape_b)");
+    f.shape_a = read_shape(s, "shape_a");
+    f.shape_b = read_shape(s, "shape_b");
+  } else {
+    s.missing("shape", "missing (give 'shape', or both 'shape_a' and 'shape_b'); valid shapes: " +
+                           shape_names());
+  }
+
+  f.vertices_a = default_vertices(f.shape_a);
+  f.vertices_b = default_vertices(f.shape_b);
+  for (std::string_view key : {"vertices_a", "vertices_b"})
+    if (s.find("vertices") && s.find(key))
+      s.fail(*s.find(key), key, "cannot be combined with 'vertices' (which sets both counts)");
+  if (const auto v = s.count_interval("vertices")) f.vertices_a = f.vertices_b = *v;
+  if (const auto v = s.count_interval("vertices_a")) f.vertices_a = *v;
+  if (const auto v = s.count_interval("vertices_b")) f.vertices_b = *v;
+
+  if (const auto scale = s.positive("scale")) {
+    if (*scale < kMinScale || *scale > kMaxScale)
+      s.fail(*s.find("scale"), "scale",
+             "must be between " + round_trip(kMinScale) + " and " + round_trip(kMaxScale) +
+                 ", got " + round_trip(*scale));
+    f.scale = *scale;
+  }
+  if (const auto rotate = s.boolean("rotate")) f.rotate = *rotate;
+  if (const auto weight = s.positive("weight")) f.weight = *weight;
+
+  f.placement = placement;
+  if (const toml::table* sub = s.subtable("placement"))
+    f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
+
+  if (const auto name = s.string("name")) {
+    if (name->empty()) s.fail(*s.find("name"), "name", "must not be empty");
+    f.name = *name;
+  } else if (f.shape_a == f.shape_b) {
+    f.name = std::string(to_string(f.shape_a));
+  } else {
+    f.name = std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+  }
+  return f;
+}
+
+/// The option keys of each algorithm beyond `name` and `max_iterations`.
+std::vector<std::string_view> own_option_keys(std::string_view algorithm) {
+  if (algorithm == "gjk-johnson") return {"relative_gap", "absolute_gap_squared", "relative_contact"};
+  if (algorithm == "libccd-gjk" || algorithm == "libccd-mpr") return {"mpr_tolerance"};
+  return {};
+}
+
+/// The algorithms an experiment may list: the registry without the exact oracle.
+std::vector<std::string_view> query_algorithm_names() {
+  std::vector<std::string_view> names;
+  for (const AlgorithmInfo& info : algorithms())
+    if (info.kind != AnswerKind::exact) names.push_back(info.name);
+  return names;
+}
+
+AlgorithmSpec read_algorithm(const Section& s) {
+  const std::vector<std::string_view> valid = query_algorithm_names();
+  const auto name = s.string("name");
+  if (!name) s.missing("name", "missing (required); valid: " + join(valid));
+  const toml::node& name_node = *s.find("name");
+  const AlgorithmInfo* info = find_algorithm(*name);
+  if (info && info->kind == AnswerKind::exact)
+    s.fail(name_node, "name",
+           "'" + *name + "' is not listed as an algorithm: the exact oracle runs on every case "
+           "and is configured by [oracle] (enabled, depth); valid: " + join(valid));
+  if (!info) s.fail(name_node, "name", "unknown algorithm '" + *name + "'; valid: " + join(valid));
+
+  std::vector<std::string_view> allowed = {"name", "max_iterations"};
+  for (std::string_view key : own_option_keys(*name)) allowed.push_back(key);
+  s.allow_only(allowed, [&](std::string_view key) {
+    std::vector<std::string_view> owners;
+    for (std::string_view other : valid) {
+      const auto keys = own_option_keys(other);
+      if (std::find(keys.begin(), keys.end(), key) != keys.end()) owners.push_back(other);
+    }
+    if (owners.empty()) return std::string();
+    return "applies to " + join(owners) + ", not to " + *name + "; valid for " + *name + ": " +
+           join(allowed);
+  });
+
+  AlgorithmSpec spec;
+  spec.name = *name;
+  AlgorithmOptions& o = spec.options;
+  if (const auto n = s.integer("max_iterations", 1, std::numeric_limits<int>::max())) {
+    const int iterations = static_cast<int>(*n);
+    if (spec.name == "gjk-bool") o.gjk_boolean.max_iterations = iterations;
+    else if (spec.name == "gjk-johnson") o.gjk_distance.max_iterations = iterations;
+    else if (spec.name == "libccd-gjk" || spec.name == "libccd-mpr") o.libccd.max_iterations = iterations;
+    else o.set_max_iterations(iterations);
+  }
+  if (const auto v = s.non_negative("relative_gap")) o.gjk_distance.relative_gap = *v;
+  if (const auto v = s.non_negative("absolute_gap_squared")) o.gjk_distance.absolute_gap_squared = *v;
+  if (const auto v = s.non_negative("relative_contact")) o.gjk_distance.relative_contact = *v;
+  if (const auto v = s.positive("mpr_tolerance")) o.libccd.mpr_tolerance = *v;
+  return spec;
+}
+
+bool valid_experiment_name(std::string_view name) {
+  if (name.empty() || name.front() == '.') return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+           c == '_' || c == '-' || c == '.';
+  });
+}
+
+}  // namespace
+
+ExperimentConfig parse_experiment(const std::string& text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(text), std::string_view(source));
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(source, line_of(e.source()), "",
+                      "TOML syntax error: " + std::string(e.description()));
+  }
+
+  const Section top(source, root, "", 1);
+  top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle",
+                  "timing", "placement", "family", "algorithm"});
+
+  ExperimentConfig config;
+  config.source = source;
+  config.text = text;
+
+  const auto name = top.string("name");
+  if (!name) top.missing("name");
+  if (!valid_experiment_name(*name))
+    top.fail(*top.find("name"), "name",
+             "must be non-empty and use only letters, digits, '_', '-' and '.' (not leading), "
+             "got '" + *name + "'");
+  config.name = *name;
+
+  const auto seed = top.integer("seed", 0, std::numeric_limits<std::int64_t>::max());
+  if (!seed) top.missing("seed");
+  config.seed = static_cast<std::uint64_t>(*seed);
+
+  const auto cases = top.integer("cases", 1, kMaxCases);
+  if (!cases) top.missing("cases");
+  config.cases = static_cast<std::uint64_t>(*cases);
+
+  if (const auto threads = top.integer("threads", 1, kMaxThreads))
+    config.threads = static_cast<int>(*threads);
+  config.output = "results/" + config.name + ".h5";
+  if (const auto output = top.string("output")) {
+    if (output->empty()) top.fail(*top.find("output"), "output", "must not be empty");
+    config.output = *output;
+  }
+  if (const auto band = top.positive("touching_band")) config.touching_band = *band;
+
+  if (const toml::table* t = top.subtable("oracle")) {
+    const Section oracle = top.child(*t, "oracle");
+    oracle.allow_only({"enabled", "depth"});
+    if (const auto enabled = oracle.boolean("enabled")) config.oracle = *enabled;
+    if (const auto depth = oracle.boolean("depth")) config.depth = *depth;
+    if (config.depth && !config.oracle)
+      oracle.fail(*oracle.find("depth"), "depth", "needs the oracle (enabled = true)");
+  }
+
+  if (const toml::table* t = top.subtable("timing")) {
+    const Section timing = top.child(*t, "timing");
+    timing.allow_only({"enabled", "repetitions"});
+    if (const auto enabled = timing.boolean("enabled")) config.timing = *enabled;
+    if (const auto repetitions = timing.integer("repetitions", 1, kMaxRepetitions))
+      config.repetitions = static_cast<int>(*repetitions);
+  }
+
+  PlacementSpec placement;
+  if (const toml::table* t = top.subtable("placement"))
+    placement = read_placement(top.child(*t, "placement"), placement);
+
+  const toml::array* families = top.table_array("family");
+  if (!families) top.missing("family", "missing: at least one [[family]] is required");
+  if (families->empty())
+    top.fail(*top.find("family"), "family", "at least one [[family]] is required");
+  for (std::size_t i = 0; i < families->size(); ++i) {
+    const toml::table& t = *families->get(i)->as_table();
+    const Section s = top.child(t, "family[" + std::to_string(i) + "]");
+    FamilySpec family = read_family(s, placement);
+    for (std::size_t j = 0; j < config.families.size(); ++j)
+      if (config.families[j].name == family.name)
+        s.fail(s.find("name") ? line_of(*s.find("name")) : s.header_line(), "name",
+               "family name '" + family.name + "' is already used by family[" +
+                   std::to_string(j) + "]; give each family a distinct name");
+    config.families.push_back(std::move(family));
+  }
+
+  const toml::array* algorithms = top.table_array("algorithm");
+  if (!algorithms) top.missing("algorithm", "missing: at least one [[algorithm]] is required");
+  if (algorithms->empty())
+    top.fail(*top.find("algorithm"), "algorithm", "at least one [[algorithm]] is required");
+  for (std::size_t i = 0; i < algorithms->size(); ++i) {
+    const toml::table& t = *algorithms->get(i)->as_table();
+    const Section s = top.child(t, "algorithm[" + std::to_string(i) + "]");
+    AlgorithmSpec spec = read_algorithm(s);
+    spec.options.oracle.depth = config.depth;
+    for (std::size_t j = 0; j < config.algorithms.size(); ++j)
+      if (config.algorithms[j].name == spec.name)
+        s.fail(*s.find("name"), "name",
+               "algorithm '" + spec.name + "' is already listed as algorithm[" +
+                   std::to_string(j) + "]; list each algorithm once");
+    config.algorithms.push_back(std::move(spec));
+  }
+  return config;
+}
+
+ExperimentConfig load_experiment(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::ifstream in;
+  if (!std::filesystem::is_directory(path, ec)) in.open(path, std::ios::binary);
+  if (!in.is_open() || !in) throw ConfigError(path.string(), 0, "", "cannot read");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw ConfigError(path.string(), 0, "", "cannot read");
+  return parse_experiment(text, path.string());
+}
+
+std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec) {
+  const AlgorithmOptions& o = spec.options;
+  const std::string& n = spec.name;
+  if (n == "gjk-bool") return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)}};
+  if (n == "gjk-johnson")
+    return {{"max_iterations", std::to_string(o.gjk_distance.max_iterations)},
+            {"relative_gap", round_trip(o.gjk_distance.relative_gap)},
+            {"absolute_gap_squared", round_trip(o.gjk_distance.absolute_gap_squared)},
+            {"relative_contact", round_trip(o.gjk_distance.relative_contact)}};
+  if (n == "libccd-gjk" || n == "libccd-mpr")
+    return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
+            {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
+  if (n == "exact") return {{"depth", o.oracle.depth ? "true" : "false"}};
+  return {};
+}
+
+}  // namespace gjklab::experiment
