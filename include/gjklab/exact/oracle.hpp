@@ -52,12 +52,15 @@ struct OracleAnswer {
   std::optional<double> depth;
 };
 
-/// Solves the pair exactly. Throws std::invalid_argument for an empty cloud or a non-finite
-/// coordinate (the message names which cloud).
+/// Solves the pair exactly. Throws std::invalid_argument (gjklab::InvalidGeometry) for an
+/// empty cloud or a non-finite coordinate; the message names which cloud, e.g.
+/// "cloud B: non-finite coordinate in point 3".
 OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b,
                    const OracleOptions& options = {});
 
-/// Number of vertices of the convex hull of one cloud (see OracleAnswer::hull_vertices_a).
+/// Number of vertices of the convex hull of one cloud (see OracleAnswer::hull_vertices_a),
+/// decided with exact predicates. Throws std::invalid_argument for an empty cloud or a
+/// non-finite coordinate.
 int hull_vertex_count(std::span<const Vec3> cloud);
 
 /// Version string of the CGAL library the oracle was built with (for provenance).

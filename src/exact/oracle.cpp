@@ -1,0 +1,103 @@
+// The exact oracle: distance and intersection with CGAL::Polytope_distance_d.
+//
+// Polytope_distance_d solves the quadratic program min |Σλ_i a_i − Σμ_j b_j|² over convex
+// weights with CGAL's exact QP solver. Every number type in the setup is exact: the kernel is
+// Homogeneous<Gmpzf> (a double converts exactly to a Gmpzf, with homogenising weight 1), and
+// both the solver's type ET and the pricing type NT are Gmpzf. (The documented setup with a
+// double kernel and NT = double prices in floating point; it breaks down, for example, when
+// squared coordinates overflow or underflow.) Gmpzf is a dyadic floating-point type with an
+// exact mantissa, which avoids the gcd normalisations of Gmpq and measured 2–3 times faster
+// than Simple_cartesian<Gmpq> with ET = NT = Gmpq at identical results.
+//
+// The result num/den of two Gmpzf values is turned into a GMP rational in lowest terms. Only
+// the extreme points of each cloud enter the QP (the hulls are the same).
+#include <CGAL/Gmpzf.h>
+#include <CGAL/Homogeneous.h>
+#include <CGAL/Polytope_distance_d.h>
+#include <CGAL/Polytope_distance_d_traits_3.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/geometry/polytope.hpp"
+#include "gmp_support.hpp"
+#include "hull.hpp"
+
+namespace gjklab::exact {
+
+namespace {
+
+using Kernel = CGAL::Homogeneous<CGAL::Gmpzf>;
+using DistanceTraits = CGAL::Polytope_distance_d_traits_3<Kernel, CGAL::Gmpzf, CGAL::Gmpzf>;
+using PolytopeDistance = CGAL::Polytope_distance_d<DistanceTraits>;
+
+void check_cloud(std::span<const Vec3> cloud, const char* name) {
+  if (std::string problem = describe_invalid_cloud(cloud); !problem.empty())
+    throw InvalidGeometry(std::string(name) + ": " + problem);
+}
+
+/// out := x exactly (x = mantissa · 2^exponent).
+void assign(mpq_ptr out, const CGAL::Gmpzf& x) {
+  mpq_set_z(out, x.man());
+  const long e = x.exp();
+  if (e > 0) mpq_mul_2exp(out, out, static_cast<mp_bitcnt_t>(e));
+  if (e < 0) mpq_div_2exp(out, out, static_cast<mp_bitcnt_t>(-e));
+}
+
+std::vector<Kernel::Point_3> to_kernel(const std::vector<Vec3>& points) {
+  std::vector<Kernel::Point_3> out;
+  out.reserve(points.size());
+  for (const Vec3& p : points)
+    out.emplace_back(CGAL::Gmpzf(p.x()), CGAL::Gmpzf(p.y()), CGAL::Gmpzf(p.z()));
+  return out;
+}
+
+/// out := the exact squared distance between the hulls of the two point sets.
+void squared_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, mpq_ptr out) {
+  const std::vector<Kernel::Point_3> pa = to_kernel(a), pb = to_kernel(b);
+  const PolytopeDistance pd(pa.begin(), pa.end(), pb.begin(), pb.end());
+  detail::Mpq den;
+  assign(out, pd.squared_distance_numerator());
+  assign(den.get(), pd.squared_distance_denominator());
+  if (mpq_sgn(den.get()) == 0)
+    throw std::logic_error("exact oracle: Polytope_distance_d returned a zero denominator");
+  mpq_div(out, out, den.get());  // the quotient is canonical (lowest terms, den > 0)
+  if (mpq_sgn(out) < 0)
+    throw std::logic_error("exact oracle: Polytope_distance_d returned a negative distance");
+}
+
+}  // namespace
+
+OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const OracleOptions& options) {
+  check_cloud(a, "cloud A");
+  check_cloud(b, "cloud B");
+  const detail::HullSummary hull_a = detail::hull_summary(a);
+  const detail::HullSummary hull_b = detail::hull_summary(b);
+
+  OracleAnswer answer;
+  answer.hull_vertices_a = static_cast<int>(hull_a.extreme_points.size());
+  answer.hull_vertices_b = static_cast<int>(hull_b.extreme_points.size());
+
+  detail::Mpq d2;
+  squared_distance(hull_a.extreme_points, hull_b.extreme_points, d2.get());
+  answer.intersect = mpq_sgn(d2.get()) == 0;
+  answer.distance_squared = detail::to_rational(d2.get());
+  answer.distance = sqrt_to_double(answer.distance_squared);
+
+  if (options.depth && answer.intersect) {
+    detail::Mpq depth2;
+    detail::penetration_depth_squared(hull_a.extreme_points, hull_b.extreme_points, depth2.get());
+    answer.depth_squared = detail::to_rational(depth2.get());
+    answer.depth = sqrt_to_double(*answer.depth_squared);
+  }
+  return answer;
+}
+
+int hull_vertex_count(std::span<const Vec3> cloud) {
+  check_cloud(cloud, "cloud");
+  return static_cast<int>(detail::hull_summary(cloud).extreme_points.size());
+}
+
+}  // namespace gjklab::exact
