@@ -5,6 +5,8 @@
 #include <charconv>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
 #include <sstream>
 
 #include "gjklab/geometry/polytope.hpp"
@@ -147,6 +149,15 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
   return out;
 }
 
+/// The "id" string of a line that is not valid JSON, if one can be seen, so that the error
+/// names the case the user wrote.
+std::optional<std::string> id_from_unparsed(std::string_view text) {
+  static const std::regex id_pattern(R"re("id"\s*:\s*"([^"\\]*)")re");
+  std::match_results<std::string_view::const_iterator> m;
+  if (std::regex_search(text.begin(), text.end(), m, id_pattern)) return m[1].str();
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
@@ -173,8 +184,13 @@ CaseOrError parse_case_line(std::string_view text, int line) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    return CaseError{default_id, line, std::string("malformed JSON: ") + e.what()};
+  } catch (const nlohmann::json::out_of_range& e) {
+    // nlohmann rejects numbers beyond the double range (e.g. 1e999) while parsing.
+    return CaseError{id_from_unparsed(text).value_or(default_id), line,
+                     std::string("non-finite coordinate: ") + e.what()};
+  } catch (const nlohmann::json::exception& e) {
+    return CaseError{id_from_unparsed(text).value_or(default_id), line,
+                     std::string("malformed JSON: ") + e.what()};
   }
   if (!j.is_object()) return CaseError{default_id, line, "expected a JSON object"};
   PointCase c;

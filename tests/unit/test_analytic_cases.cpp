@@ -43,7 +43,7 @@ std::vector<AnalyticCase> analytic_cases() {
                    1 - std::sqrt(3.0) / 2});
   cases.push_back({"boxes far apart", unit,
                    unit.transformed(Pose::from_translation(Vec3(-3, 4, 12))), false,
-                   std::sqrt(2.5 * 2.5 + 3.5 * 3.5 + 11.5 * 11.5)});
+                   std::sqrt(2.0 * 2 + 3 * 3 + 11 * 11)});
   cases.push_back({"small box nested in a large box", shapes::box(Vec3(4, 4, 4)),
                    shapes::box(Vec3(0.5, 0.25, 1)).transformed(Pose::from_translation(Vec3(0.5, -0.25, 1))),
                    true, 0});

@@ -54,6 +54,10 @@ inline bool johnson_reduce(Simplex& simplex, ClosestOnSimplex& out) {
 
 }  // namespace detail
 
+/// Relative error bound of a rounded 3-vector dot product, |fl(x·y) − x·y| ≤ 3u‖x‖‖y‖ with
+/// u = 2^-53, rounded up: about 4.5u.
+inline constexpr double kDotRoundoff = 1e-15;
+
 /// Default first search direction. Any fixed direction keeps the query scale-invariant.
 inline const Vec3 kDefaultInitialDirection = Vec3(1, 0, 0);
 
@@ -89,6 +93,11 @@ DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& op
   if (!first.w.allFinite()) return finish(Termination::numerical_failure, false);
   if (in_contact(best.v, simplex)) return finish(Termination::converged, true);
 
+  // Set once some support point satisfies v·w > 0: then the plane v·x = v·w separates the
+  // origin from A − B, a certificate that the shapes do not intersect. A sub-algorithm that
+  // later claims contact has accepted a numerically flat simplex.
+  bool separation_proven = false;
+
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     const Vec3 v = best.v;
     const double vv = v.squaredNorm();
@@ -98,12 +107,16 @@ DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& op
 
     // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist: relative test (van den Bergen) and an
     // optional absolute floor, both on squared lengths.
-    const double gap = vv - v.dot(next.w);
+    const double vw = v.dot(next.w);
+    const double gap = vv - vw;
     if (gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared)
       return finish(Termination::converged, false);
     // w already in the simplex: in exact arithmetic its gap would be 0 (every retained point
     // lies on the plane v·x = ‖v‖²), so the new point brings no information.
     if (simplex.contains(next.w)) return finish(Termination::converged, false);
+    // Relative rounding bound of a dot product of two 3-vectors (about 4.5 units in the last
+    // place): v·w above it is a separation certificate, not noise.
+    if (vw > kDotRoundoff * std::sqrt(vv) * next.w.norm()) separation_proven = true;
 
     Simplex reduced = simplex;
     reduced.push(next);
@@ -112,6 +125,7 @@ DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& op
       return finish(Termination::degenerate_simplex, false);
     if (!candidate.v.allFinite()) return finish(Termination::numerical_failure, false);
     if (reduced.full() || in_contact(candidate.v, reduced)) {
+      if (separation_proven) return finish(Termination::degenerate_simplex, false);
       best = candidate;
       return finish(Termination::converged, true);
     }
