@@ -13,9 +13,17 @@
 
 namespace gjklab::experiment {
 
+namespace {
+/// "FILE:LINE: PROBLEM", or "FILE: PROBLEM" when the problem concerns the whole file.
+std::string located(const std::string& file, int line, const std::string& problem) {
+  std::string out = file;
+  if (line > 0) out.append(":").append(std::to_string(line));
+  return out.append(": ").append(problem);
+}
+}  // namespace
+
 InputError::InputError(std::string file, int line, std::string problem)
-    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
-                         problem),
+    : std::runtime_error(located(file, line, problem)),
       file_(std::move(file)),
       line_(line),
       problem_(std::move(problem)) {}
