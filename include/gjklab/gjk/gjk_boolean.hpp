@@ -7,8 +7,10 @@
 #pragma once
 
 #include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/trace.hpp"
 
 namespace gjklab {
 
@@ -26,36 +28,64 @@ bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
 
 }  // namespace detail
 
-template <SupportMap A, SupportMap B>
+template <SupportMap A, SupportMap B, class Observer = NoTrace>
 BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& options = {},
-                            const Vec3& initial_direction = Vec3(1, 0, 0)) {
+                            Observer&& observer = {}) {
   BooleanResult out;
-  const MinkowskiDifference<A, B> cso(a, b);
   detail::BooleanSimplex simplex;
-  simplex.points[0] = cso.support(initial_direction);
+  const SimplexVertex first = detail::minkowski_support(a, b, options.initial_direction);
+  simplex.points[0] = first.w;
   simplex.size = 1;
   out.support_calls = 1;
   Vec3 direction = -simplex.points[0];
 
+  auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
+    if constexpr (std::remove_reference_t<Observer>::enabled) {
+      GjkIterationTrace t;
+      t.iteration = out.iterations;
+      t.direction = d;
+      t.support = w;
+      for (int i = 0; i < simplex.size; ++i) t.simplex.push({simplex.points[i]});
+      t.step = step;
+      observer.on_iteration(t);
+    }
+  };
   auto finish = [&](bool intersect, Termination t) {
     out.intersect = intersect;
     out.termination = t;
     return out;
   };
-  if (!simplex.points[0].allFinite()) return finish(false, Termination::numerical_failure);
+  if (!first.w.allFinite()) return finish(false, Termination::numerical_failure);
 
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     // A zero direction means the origin lies on the current simplex: the shapes touch.
-    if (direction.isZero(0)) return finish(true, Termination::converged);
-    if (!direction.allFinite()) return finish(false, Termination::numerical_failure);
-    const Vec3 w = cso.support(direction);
+    if (direction.isZero(0)) {
+      trace(direction, {}, GjkStep::contact);
+      return finish(true, Termination::converged);
+    }
+    if (!direction.allFinite()) {
+      trace(direction, {}, GjkStep::non_finite);
+      return finish(false, Termination::numerical_failure);
+    }
+    const Vec3 d = direction;
+    const SimplexVertex w = detail::minkowski_support(a, b, d);
     ++out.support_calls;
-    if (!w.allFinite()) return finish(false, Termination::numerical_failure);
-    if (w.dot(direction) < 0) return finish(false, Termination::converged);
+    if (!w.w.allFinite()) {
+      trace(d, w, GjkStep::non_finite);
+      return finish(false, Termination::numerical_failure);
+    }
+    if (w.w.dot(d) < 0) {
+      trace(d, w, GjkStep::separated);
+      return finish(false, Termination::converged);
+    }
     for (int i = simplex.size; i > 0; --i) simplex.points[i] = simplex.points[i - 1];
-    simplex.points[0] = w;
+    simplex.points[0] = w.w;
     ++simplex.size;
-    if (detail::boolean_gjk_step(simplex, direction)) return finish(true, Termination::converged);
+    if (detail::boolean_gjk_step(simplex, direction)) {
+      trace(d, w, GjkStep::contact);
+      return finish(true, Termination::converged);
+    }
+    trace(d, w, out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
   }
   out.iterations = options.max_iterations;
   // No separating plane was found within the budget; the answer is undetermined and reported

@@ -1,55 +1,84 @@
-// GJK distance query (Gilbert, Johnson and Keerthi 1988) with Johnson's sub-algorithm.
+// GJK distance query (Gilbert, Johnson and Keerthi 1988) with an interchangeable
+// sub-algorithm (Johnson's by default).
 //
 // Iterates v_k, the point of the current simplex closest to the origin, towards the point of
 // A − B closest to the origin. Each iteration takes the support point w = s_A(−v) − s_B(v),
-// tests termination, adds w to the simplex and reduces it with Johnson's sub-algorithm.
+// tests termination, adds w to the simplex and reduces it with the sub-algorithm.
 // Upper bound of the distance: ‖v‖; lower bound: v·w/‖v‖.
 #pragma once
 
 #include <cmath>
+#include <concepts>
 
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/johnson.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
+#include "gjklab/gjk/trace.hpp"
 
 namespace gjklab {
 
-namespace detail {
-
-/// Support point of A − B in direction d, with its two parts.
-template <SupportMap A, SupportMap B>
-SimplexVertex minkowski_support(const A& a, const B& b, const Vec3& d) {
-  SimplexVertex v;
-  v.a = a.support(d);
-  v.b = b.support(-d);
-  v.w = v.a - v.b;
-  return v;
-}
-
-/// The point of a simplex closest to the origin, with the matching points of A and B.
+/// The point of a simplex closest to the origin, with the matching points of A and B and the
+/// barycentric weights of the (reduced) simplex points.
 struct ClosestOnSimplex {
   Vec3 v = Vec3::Zero();
   Vec3 witness_a = Vec3::Zero();
   Vec3 witness_b = Vec3::Zero();
+  std::array<double, 4> weights{};
 };
 
-/// Reduces the simplex to Johnson's sub-simplex and computes its closest point and witnesses.
-/// Returns false (simplex untouched) when Johnson's tests accept no subset.
-inline bool johnson_reduce(Simplex& simplex, ClosestOnSimplex& out) {
-  std::array<Vec3, 4> y;
-  for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
-  const JohnsonSolution s = johnson_closest_point(y, simplex.size());
-  if (!s.found) return false;
-  out = {s.closest, Vec3::Zero(), Vec3::Zero()};
-  for (int i = 0; i < simplex.size(); ++i) {
-    if (!(s.subset & (1u << i))) continue;
-    out.witness_a += s.weights[i] * simplex[i].a;
-    out.witness_b += s.weights[i] * simplex[i].b;
+/// A distance sub-algorithm: reduces the simplex to the sub-simplex whose convex hull holds
+/// the point closest to the origin, and computes that point. Returns false, leaving the
+/// simplex untouched, when it cannot decide (a degenerate simplex).
+template <class S>
+concept SubAlgorithm = requires(const S& s, Simplex& simplex, ClosestOnSimplex& out) {
+  { s.reduce(simplex, out) } -> std::same_as<bool>;
+};
+
+/// Johnson's distance sub-algorithm (see johnson.hpp), as published: no backup procedure.
+struct JohnsonSubAlgorithm {
+  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+    std::array<Vec3, 4> y;
+    for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
+    const JohnsonSolution s = johnson_closest_point(y, simplex.size());
+    if (!s.found) return false;
+    out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
+    int kept = 0;
+    for (int i = 0; i < simplex.size(); ++i) {
+      if (!(s.subset & (1u << i))) continue;
+      out.witness_a += s.weights[i] * simplex[i].a;
+      out.witness_b += s.weights[i] * simplex[i].b;
+      out.weights[kept++] = s.weights[i];
+    }
+    simplex.keep(s.subset);
+    return true;
   }
-  simplex.keep(s.subset);
-  return true;
+};
+
+namespace detail {
+
+/// Support point of A − B in direction d, with its two parts (and their vertex indices when
+/// the shapes are polytopes that can report them).
+template <SupportMap A, SupportMap B>
+SimplexVertex minkowski_support(const A& a, const B& b, const Vec3& d) {
+  SimplexVertex v;
+  if constexpr (requires { a.support_index(d); }) {
+    const auto i = a.support_index(d);
+    v.index_a = static_cast<std::int32_t>(i);
+    v.a = a.vertices()[i];
+  } else {
+    v.a = a.support(d);
+  }
+  if constexpr (requires { b.support_index(d); }) {
+    const auto j = b.support_index(-d);
+    v.index_b = static_cast<std::int32_t>(j);
+    v.b = b.vertices()[j];
+  } else {
+    v.b = b.support(-d);
+  }
+  v.w = v.a - v.b;
+  return v;
 }
 
 }  // namespace detail
@@ -58,28 +87,47 @@ inline bool johnson_reduce(Simplex& simplex, ClosestOnSimplex& out) {
 /// u = 2^-53, rounded up: about 4.5u.
 inline constexpr double kDotRoundoff = 1e-15;
 
-/// Default first search direction. Any fixed direction keeps the query scale-invariant.
-inline const Vec3 kDefaultInitialDirection = Vec3(1, 0, 0);
-
-/// Distance between two convex shapes given by support maps (both in the same frame).
+/// Distance between two convex shapes given by support maps (both in the same frame), with
+/// sub-algorithm Sub and an observer that receives a trace of every iteration when enabled.
 /// The result's termination says why the loop stopped; on any stop other than `converged` the
 /// answer is the best upper bound found so far (‖v‖ and its witnesses).
-template <SupportMap A, SupportMap B>
-DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& options = {},
-                            const Vec3& initial_direction = kDefaultInitialDirection) {
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
+DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOptions& options,
+                                 Observer&& observer = {}) {
+  const Sub sub{};
   DistanceResult out;
-  const SimplexVertex first = detail::minkowski_support(a, b, initial_direction);
+  const SimplexVertex first = detail::minkowski_support(a, b, options.initial_direction);
   out.support_calls = 1;
   Simplex simplex;
   simplex.push(first);
-  detail::ClosestOnSimplex best{first.w, first.a, first.b};
+  ClosestOnSimplex best{first.w, first.a, first.b, {1, 0, 0, 0}};
+  double lower_bound = 0;
 
+  // Reports the iteration to the observer (when enabled) and ends the query if t says so.
+  auto trace = [&](const Vec3& direction, const SimplexVertex& w, double vv, double vw,
+                   GjkStep step) {
+    if constexpr (std::remove_reference_t<Observer>::enabled) {
+      GjkIterationTrace t;
+      t.iteration = out.iterations;
+      t.direction = direction;
+      t.support = w;
+      t.v_norm_squared = vv;
+      t.v_dot_w = vw;
+      t.lower_bound = lower_bound;
+      t.simplex = simplex;
+      t.weights = best.weights;
+      t.step = step;
+      observer.on_iteration(t);
+    }
+  };
   auto finish = [&](Termination t, bool contact) {
     out.intersect = contact;
     out.closest = best.v;
     out.witness_a = best.witness_a;
     out.witness_b = best.witness_b;
     out.distance = contact ? 0.0 : best.v.norm();
+    out.lower_bound = contact ? 0.0 : lower_bound;
+    out.simplex = simplex;
     out.termination = t;
     return out;
   };
@@ -103,39 +151,69 @@ DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& op
     const double vv = v.squaredNorm();
     const SimplexVertex next = detail::minkowski_support(a, b, -v);
     ++out.support_calls;
-    if (!next.w.allFinite()) return finish(Termination::numerical_failure, false);
+    if (!next.w.allFinite()) {
+      trace(-v, next, vv, NAN, GjkStep::non_finite);
+      return finish(Termination::numerical_failure, false);
+    }
+    const double vw = v.dot(next.w);
+    if (vw > 0) lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
 
     // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist: relative test (van den Bergen) and an
     // optional absolute floor, both on squared lengths.
-    const double vw = v.dot(next.w);
     const double gap = vv - vw;
-    if (gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared)
+    if (gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared) {
+      trace(-v, next, vv, vw, GjkStep::gap_converged);
       return finish(Termination::converged, false);
+    }
     // w already in the simplex: in exact arithmetic its gap would be 0 (every retained point
     // lies on the plane v·x = ‖v‖²), so the new point brings no information.
-    if (simplex.contains(next.w)) return finish(Termination::converged, false);
-    // Relative rounding bound of a dot product of two 3-vectors (about 4.5 units in the last
-    // place): v·w above it is a separation certificate, not noise.
+    if (simplex.contains(next.w)) {
+      trace(-v, next, vv, vw, GjkStep::repeated_support);
+      return finish(Termination::converged, false);
+    }
+    // Relative rounding bound of the dot product: v·w above it is a separation certificate.
     if (vw > kDotRoundoff * std::sqrt(vv) * next.w.norm()) separation_proven = true;
 
     Simplex reduced = simplex;
     reduced.push(next);
-    detail::ClosestOnSimplex candidate;
-    if (!detail::johnson_reduce(reduced, candidate))
+    ClosestOnSimplex candidate;
+    if (!sub.reduce(reduced, candidate)) {
+      trace(-v, next, vv, vw, GjkStep::degenerate);
       return finish(Termination::degenerate_simplex, false);
-    if (!candidate.v.allFinite()) return finish(Termination::numerical_failure, false);
+    }
+    if (!candidate.v.allFinite()) {
+      trace(-v, next, vv, vw, GjkStep::non_finite);
+      return finish(Termination::numerical_failure, false);
+    }
     if (reduced.full() || in_contact(candidate.v, reduced)) {
-      if (separation_proven) return finish(Termination::degenerate_simplex, false);
+      if (separation_proven) {
+        trace(-v, next, vv, vw, GjkStep::degenerate);
+        return finish(Termination::degenerate_simplex, false);
+      }
+      simplex = reduced;
       best = candidate;
+      trace(-v, next, vv, vw, GjkStep::contact);
       return finish(Termination::converged, true);
     }
     // The upper bound ‖v‖ must decrease strictly; when rounding stops it, keep the old v.
-    if (!(candidate.v.squaredNorm() < vv)) return finish(Termination::no_progress, false);
+    if (!(candidate.v.squaredNorm() < vv)) {
+      trace(-v, next, vv, vw, GjkStep::no_progress);
+      return finish(Termination::no_progress, false);
+    }
     simplex = reduced;
     best = candidate;
+    trace(-v, next, vv, vw,
+          out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
   }
   out.iterations = options.max_iterations;
   return finish(Termination::step_limit, false);
+}
+
+/// `gjk-johnson`: GJK distance with Johnson's sub-algorithm.
+template <SupportMap A, SupportMap B, class Observer = NoTrace>
+DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& options = {},
+                            Observer&& observer = {}) {
+  return gjk_distance_with<JohnsonSubAlgorithm>(a, b, options, std::forward<Observer>(observer));
 }
 
 }  // namespace gjklab

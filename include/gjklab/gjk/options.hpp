@@ -5,6 +5,8 @@
 // scale by exactly 2^k where no overflow or underflow occurs.
 #pragma once
 
+#include "gjklab/geometry/types.hpp"
+
 namespace gjklab {
 
 struct GjkBooleanDefaults {
@@ -15,6 +17,8 @@ struct GjkBooleanDefaults {
 struct GjkBooleanOptions {
   /// Upper bound on main-loop iterations (support evaluations after the first).
   int max_iterations = GjkBooleanDefaults::max_iterations;
+  /// First search direction (any length); fixed by default so runs are reproducible.
+  Vec3 initial_direction = Vec3(1, 0, 0);
 };
 
 struct GjkDistanceDefaults {
@@ -39,6 +43,9 @@ struct GjkDistanceOptions {
   /// ‖v‖ ≤ relative_contact · max_i ‖y_i‖ over the simplex vertices y_i, i.e. when v is
   /// indistinguishable from the rounding noise of the points that produced it.
   double relative_contact = GjkDistanceDefaults::relative_contact;
+  /// First search direction (any length). A fixed default keeps the query scale-invariant;
+  /// pass the previous query's direction to warm-start a sequence of queries.
+  Vec3 initial_direction = Vec3(1, 0, 0);
 };
 
 }  // namespace gjklab

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gjklab/geometry/types.hpp"
+#include "gjklab/gjk/simplex.hpp"
 #include "gjklab/gjk/termination.hpp"
 
 namespace gjklab {
@@ -21,6 +22,11 @@ struct DistanceResult {
   Vec3 witness_a = Vec3::Zero();  ///< point of A closest to B (world frame)
   Vec3 witness_b = Vec3::Zero();  ///< point of B closest to A; witness_a − witness_b = v
   Vec3 closest = Vec3::Zero();    ///< v: the point of A − B closest to the origin
+  /// Best lower bound of the distance seen, max(0, v·w/‖v‖) over the iterations; the true
+  /// distance lies in [lower_bound, distance] up to rounding.
+  double lower_bound = 0;
+  /// The final simplex (for penetration-depth algorithms that start from it, and for traces).
+  Simplex simplex;
   int iterations = 0;
   int support_calls = 0;
   Termination termination = Termination::converged;

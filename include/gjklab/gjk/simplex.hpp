@@ -10,9 +10,12 @@
 namespace gjklab {
 
 struct SimplexVertex {
-  Vec3 w;  ///< w = a − b, a point of the Minkowski difference
-  Vec3 a;  ///< support point of A
-  Vec3 b;  ///< support point of B
+  Vec3 w = Vec3::Zero();  ///< w = a − b, a point of the Minkowski difference
+  Vec3 a = Vec3::Zero();  ///< support point of A
+  Vec3 b = Vec3::Zero();  ///< support point of B
+  /// Indices of a and b in their polytopes' vertex lists (−1 for shapes without indices).
+  std::int32_t index_a = -1;
+  std::int32_t index_b = -1;
 };
 
 class Simplex {

@@ -1,0 +1,71 @@
+// Per-iteration traces of the GJK queries, delivered to an optional observer.
+//
+// A query builds a trace record only when its observer is enabled (a compile-time flag), and
+// the record only reads values the query computes anyway: traced and untraced runs execute
+// the same arithmetic and return bit-identical results.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "gjklab/gjk/simplex.hpp"
+
+namespace gjklab {
+
+/// Which branch of the GJK loop fired in an iteration (`continued`: none, the loop goes on).
+enum class GjkStep : std::uint8_t {
+  continued,         ///< the simplex was reduced and ‖v‖ decreased
+  gap_converged,     ///< ‖v‖² − v·w within the relative/absolute tolerance
+  repeated_support,  ///< w is already a vertex of the simplex
+  contact,           ///< the simplex encloses the origin, or ‖v‖ is rounding noise
+  separated,         ///< (boolean GJK) the support point did not pass the origin
+  degenerate,        ///< the sub-algorithm accepted no subset, or a flat one after separation
+  no_progress,       ///< ‖v‖ did not decrease
+  non_finite,        ///< a NaN or infinity appeared
+  step_limit,        ///< the iteration bound was reached
+};
+
+constexpr std::string_view to_string(GjkStep s) {
+  switch (s) {
+    case GjkStep::continued: return "continued";
+    case GjkStep::gap_converged: return "gap_converged";
+    case GjkStep::repeated_support: return "repeated_support";
+    case GjkStep::contact: return "contact";
+    case GjkStep::separated: return "separated";
+    case GjkStep::degenerate: return "degenerate";
+    case GjkStep::no_progress: return "no_progress";
+    case GjkStep::non_finite: return "non_finite";
+    case GjkStep::step_limit: return "step_limit";
+  }
+  return "unknown";
+}
+
+/// One iteration of a GJK query.
+struct GjkIterationTrace {
+  int iteration = 0;
+  Vec3 direction = Vec3::Zero();   ///< search direction (−v for the distance query)
+  SimplexVertex support;           ///< the support point w = a − b taken in this iteration
+  double v_norm_squared = 0;       ///< ‖v‖² before the step (distance query)
+  double v_dot_w = 0;              ///< v·w (distance query)
+  double lower_bound = 0;          ///< best lower bound of the distance so far, max(0, v·w/‖v‖)
+  Simplex simplex;                 ///< the simplex after the step
+  std::array<double, 4> weights{}; ///< barycentric weights of the simplex points (distance)
+  GjkStep step = GjkStep::continued;
+};
+
+/// The default observer: disabled, so no trace is built.
+struct NoTrace {
+  static constexpr bool enabled = false;
+  void on_iteration(const GjkIterationTrace&) {}
+};
+
+/// An observer that keeps every iteration.
+struct TraceRecorder {
+  static constexpr bool enabled = true;
+  std::vector<GjkIterationTrace> iterations;
+  void on_iteration(const GjkIterationTrace& t) { iterations.push_back(t); }
+};
+
+}  // namespace gjklab
