@@ -1,5 +1,7 @@
 #include "gjklab/experiment/config.hpp"
 
+#include "gjklab/experiment/cloud_io.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -43,12 +45,24 @@ constexpr std::int64_t kMaxRepetitions = 1'000'000;
 constexpr double kMinScale = 1e-100;  // keeps squared lengths far from underflow and overflow
 constexpr double kMaxScale = 1e100;
 
-constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random"};
+constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random",
+                                                "touching"};
+/// Shapes a family can name directly ("contact" and "file" are handled apart).
 constexpr ShapeKind kShapeKinds[] = {
-    ShapeKind::sphere_points, ShapeKind::ball_points, ShapeKind::cube_points,
-    ShapeKind::gaussian,      ShapeKind::box,         ShapeKind::cone,
-    ShapeKind::cylinder,      ShapeKind::uv_sphere,
+    ShapeKind::sphere_points,    ShapeKind::ball_points,      ShapeKind::cube_points,
+    ShapeKind::gaussian,         ShapeKind::box,              ShapeKind::cone,
+    ShapeKind::cylinder,         ShapeKind::uv_sphere,        ShapeKind::flat_points,
+    ShapeKind::collinear_points, ShapeKind::duplicate_points, ShapeKind::single_point,
+    ShapeKind::sliver,
 };
+constexpr std::string_view kPairShapes[] = {"contact", "file"};
+constexpr ContactType kContactTypes[] = {
+    ContactType::face_face,   ContactType::edge_edge,     ContactType::vertex_face,
+    ContactType::edge_face,   ContactType::vertex_edge,   ContactType::vertex_vertex,
+    ContactType::parallel_edges,
+};
+constexpr std::string_view kRotations[] = {"true", "false", "\"random\"", "\"none\"",
+                                           "\"axes\""};
 
 template <typename Range>
 std::string join(const Range& items) {
@@ -63,6 +77,14 @@ std::string join(const Range& items) {
 std::string shape_names() {
   std::vector<std::string_view> names;
   for (ShapeKind k : kShapeKinds) names.push_back(to_string(k));
+  for (std::string_view pair : kPairShapes) names.push_back(pair);
+  return join(names);
+}
+
+std::string contact_names() {
+  std::vector<std::string_view> names;
+  for (ContactType c : kContactTypes) names.push_back(to_string(c));
+  names.push_back("any");
   return join(names);
 }
 
@@ -345,15 +367,89 @@ PlacementSpec read_placement(const Section& s, PlacementSpec base) {
   return base;
 }
 
-FamilySpec read_family(const Section& s, const PlacementSpec& placement) {
+/// `contact = "..."` of a contact family.
+void read_contact(const Section& s, FamilySpec& f) {
+  const auto name = s.string("contact");
+  if (!name) s.missing("contact", "missing (shape = \"contact\" needs it); valid: " + contact_names());
+  if (*name == "any") {
+    f.contact_any = true;
+    f.contact = ContactType::face_face;
+  } else {
+    const auto* found = std::find_if(std::begin(kContactTypes), std::end(kContactTypes),
+                                     [&](ContactType c) { return to_string(c) == *name; });
+    if (found == std::end(kContactTypes))
+      s.fail(*s.find("contact"), "contact",
+             "unknown contact type '" + *name + "'; valid: " + contact_names());
+    f.contact = *found;
+  }
+  f.shape_a = ShapeKind::box;
+  f.shape_b = ShapeKind::box;
+  if (const auto angle = s.positive_interval("angle")) f.angle = *angle;
+}
+
+/// `path = "..."` of a file family: reads every pair now, so a bad file is a config error.
+void read_stored_pairs(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+  const auto path = s.string("path");
+  if (!path) s.missing("path", "missing (shape = \"file\" needs the cases file)");
+  f.path = *path;
+  std::filesystem::path resolved(*path);
+  if (resolved.is_relative())
+    resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+  std::vector<CaseOrError> cases;
+  try {
+    cases = read_cases_file(resolved);
+  } catch (const InputError& e) {
+    s.fail(*s.find("path"), "path", e.what());
+  }
+  for (const CaseOrError& c : cases) {
+    if (const auto* e = std::get_if<CaseError>(&c))
+      s.fail(*s.find("path"), "path",
+             resolved.string() + ":" + std::to_string(e->line) + ": case '" + e->id + "': " +
+                 e->problem);
+    const auto& p = std::get<PointCase>(c);
+    f.stored.push_back({p.id, p.a, p.b});
+  }
+  if (f.stored.empty()) s.fail(*s.find("path"), "path", resolved.string() + " holds no cases");
+  f.shape_a = f.shape_b = ShapeKind::from_file;
+}
+
+Rotation read_rotation(const Section& s) {
+  const toml::node* node = s.find("rotate");
+  if (!node) return Rotation::random;
+  if (node->is_boolean()) return node->as_boolean()->get() ? Rotation::random : Rotation::none;
+  if (node->is_string()) {
+    const std::string& v = node->as_string()->get();
+    if (v == "random") return Rotation::random;
+    if (v == "none") return Rotation::none;
+    if (v == "axes") return Rotation::axes;
+  }
+  s.fail(*node, "rotate", "expected true, false, \"random\", \"none\" or \"axes\"");
+}
+
+FamilySpec read_family(const Section& s, const PlacementSpec& placement,
+                       const std::string& experiment_file) {
   s.allow_only({"name", "shape", "shape_a", "shape_b", "vertices", "vertices_a", "vertices_b",
-                "scale", "rotate", "weight", "placement"});
+                "scale", "rotate", "weight", "placement", "contact", "angle", "aspect", "scale_b",
+                "offset", "path"});
   FamilySpec f;
   const bool has_shape = s.find("shape") != nullptr;
+  const auto pair_shape = has_shape && s.find("shape")->is_string()
+                              ? std::optional<std::string>(*s.string("shape"))
+                              : std::nullopt;
+  const bool is_contact = pair_shape == "contact";
+  const bool is_file = pair_shape == "file";
+  for (std::string_view key : {"contact", "angle"})
+    if (!is_contact && s.find(key))
+      s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
+  if (!is_file && s.find("path")) s.fail(*s.find("path"), "path", "applies only to shape = \"file\"");
   for (std::string_view key : {"shape_a", "shape_b"})
     if (has_shape && s.find(key))
       s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
-  if (has_shape) {
+  if (is_contact) {
+    read_contact(s, f);
+  } else if (is_file) {
+    read_stored_pairs(s, experiment_file, f);
+  } else if (has_shape) {
     f.shape_a = f.shape_b = read_shape(s, "shape");
   } else if (s.find("shape_a") || s.find("shape_b")) {
     if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
@@ -381,16 +477,28 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement) {
                  ", got " + round_trip(*scale));
     f.scale = *scale;
   }
-  if (const auto rotate = s.boolean("rotate")) f.rotate = *rotate;
+  f.rotation = read_rotation(s);
+  if (const auto aspect = s.positive_interval("aspect")) f.aspect = *aspect;
+  if (const auto ratio = s.positive_interval("scale_b")) f.scale_ratio = *ratio;
+  if (const auto offset = s.positive_interval("offset")) f.offset = *offset;
   if (const auto weight = s.positive("weight")) f.weight = *weight;
 
   f.placement = placement;
   if (const toml::table* sub = s.subtable("placement"))
     f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
 
+  const bool touching = f.placement.mode == "touching";
+  if (touching && (!is_contact || f.contact == ContactType::parallel_edges))
+    s.fail(s.header_line(), "placement.mode",
+           "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges)");
+
   if (const auto name = s.string("name")) {
     if (name->empty()) s.fail(*s.find("name"), "name", "must not be empty");
     f.name = *name;
+  } else if (is_contact) {
+    f.name = "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
+  } else if (is_file) {
+    f.name = "file:" + f.path;
   } else if (f.shape_a == f.shape_b) {
     f.name = std::string(to_string(f.shape_a));
   } else {
@@ -536,7 +644,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
   for (std::size_t i = 0; i < families->size(); ++i) {
     const toml::table& t = *families->get(i)->as_table();
     const Section s = top.child(t, "family[" + std::to_string(i) + "]");
-    FamilySpec family = read_family(s, placement);
+    FamilySpec family = read_family(s, placement, source);
     for (std::size_t j = 0; j < config.families.size(); ++j)
       if (config.families[j].name == family.name)
         s.fail(s.find("name") ? line_of(*s.find("name")) : s.header_line(), "name",

@@ -123,19 +123,136 @@ Vec3 vertex_mean(const std::vector<Vec3>& cloud) {
   return sum / static_cast<double>(cloud.size());
 }
 
-/// Generates one shape and moves it to the origin (vertex mean), rotates it there when asked,
-/// and scales it.
-std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec& family) {
-  std::vector<Vec3> cloud = generate_shape(kind, n, r);
+/// One of the 24 rotations that permute the axes and flip signs (determinant +1): exact in
+/// double, so flat clouds stay exactly flat and dyadic coordinates stay exact.
+Mat3 random_axis_rotation(gsl_rng* r) {
+  static constexpr int kPermutations[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                              {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  const unsigned k = static_cast<unsigned>(gsl_rng_uniform_int(r, 6));
+  const int parity = k < 3 ? 1 : -1;
+  double signs[3];
+  for (double& sgn : signs) sgn = gsl_rng_uniform_int(r, 2) ? 1.0 : -1.0;
+  // The product of the signs must equal the permutation's parity for determinant +1.
+  if (signs[0] * signs[1] * signs[2] != parity) signs[2] = -signs[2];
+  Mat3 m = Mat3::Zero();
+  for (int row = 0; row < 3; ++row) m(row, kPermutations[k][row]) = signs[row];
+  return m;
+}
+
+/// The family's rotation of one shape (identity, uniform on SO(3), or a signed axis
+/// permutation).
+Mat3 draw_rotation(gsl_rng* r, Rotation mode) {
+  switch (mode) {
+    case Rotation::none: return Mat3::Identity();
+    case Rotation::random: return random_rotation(r);
+    case Rotation::axes: return random_axis_rotation(r);
+  }
+  return Mat3::Identity();
+}
+
+/// Generates one shape and moves it to the origin (vertex mean), rotates it there as the
+/// family says, and scales it by `scale`.
+std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec& family,
+                             double scale) {
+  const double aspect = kind == ShapeKind::sliver ? log_uniform(r, family.aspect) : 1.0;
+  std::vector<Vec3> cloud = generate_shape(kind, n, r, aspect);
   const Vec3 mean = vertex_mean(cloud);
   for (Vec3& p : cloud) p -= mean;
-  if (family.rotate) {
-    const Mat3 rotation = random_rotation(r);
+  if (family.rotation != Rotation::none) {
+    const Mat3 rotation = draw_rotation(r, family.rotation);
     for (Vec3& p : cloud) p = rotation * p;
   }
-  for (Vec3& p : cloud) p *= family.scale;
+  for (Vec3& p : cloud) p *= scale;
   return cloud;
 }
+
+// ---- contact families ----
+//
+// Each configuration is built with the contact plane z = 0, A below and B above, from
+// coordinates that are small multiples of 1/8, so the pair is in exact contact (distance 0).
+// B's lateral offset (dx, dy) is drawn from the multiples of 1/8 in [-7/8, 7/8], which keeps
+// the contact feature inside the other shape's face or edge.
+
+double dyadic_offset(gsl_rng* r) {
+  return (static_cast<double>(gsl_rng_uniform_int(r, 15)) - 7.0) / 8.0;
+}
+
+/// Box [-1, 1]² × [-2, 0] (top face in the contact plane).
+std::vector<Vec3> box_below() {
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-2.0, 0.0}) v.emplace_back(x, y, z);
+  return v;
+}
+
+/// Box [dx-1, dx+1] × [dy-1, dy+1] × [0, 2] (bottom face in the contact plane).
+std::vector<Vec3> box_above(double dx, double dy) {
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {0.0, 2.0}) v.emplace_back(dx + x, dy + y, z);
+  return v;
+}
+
+/// Triangular prism with its ridge along y at x = 0, z = 0, widening downwards.
+std::vector<Vec3> roof_below() {
+  return {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(-1, -1, -1), Vec3(1, -1, -1),
+          Vec3(-1, 1, -1), Vec3(1, 1, -1)};
+}
+
+/// Triangular prism with its ridge along `axis` (unit, in the plane z = 0) through (dx, dy, 0),
+/// widening upwards. Exact when axis is ±x or ±y.
+std::vector<Vec3> ridge_above(const Vec3& axis, double dx, double dy) {
+  const Vec3 across(-axis.y(), axis.x(), 0);
+  const Vec3 c(dx, dy, 0);
+  return {c - axis, c + axis, c - axis - across + Vec3(0, 0, 1), c - axis + across + Vec3(0, 0, 1),
+          c + axis - across + Vec3(0, 0, 1), c + axis + across + Vec3(0, 0, 1)};
+}
+
+/// Square pyramid with its apex at (dx, dy, 0) and base at z = ±1 (sign: +1 above).
+std::vector<Vec3> pyramid(double dx, double dy, double side) {
+  std::vector<Vec3> v{Vec3(dx, dy, 0)};
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0}) v.emplace_back(dx + x, dy + y, side);
+  return v;
+}
+
+struct ContactPair {
+  std::vector<Vec3> a, b;
+  ShapeKind shape_a, shape_b;
+};
+
+ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family) {
+  const double dx = dyadic_offset(r), dy = dyadic_offset(r);
+  const Vec3 x_axis = Vec3::UnitX();
+  switch (type) {
+    case ContactType::face_face:
+      return {box_below(), box_above(dx, dy), ShapeKind::box, ShapeKind::box};
+    case ContactType::edge_edge:
+      return {roof_below(), ridge_above(x_axis, dx, dy), ShapeKind::prism, ShapeKind::prism};
+    case ContactType::vertex_face:
+      return {box_below(), pyramid(dx, dy, 1), ShapeKind::box, ShapeKind::pyramid};
+    case ContactType::edge_face:
+      return {box_below(), ridge_above(x_axis, dx, dy), ShapeKind::box, ShapeKind::prism};
+    case ContactType::vertex_edge:
+      return {roof_below(), pyramid(0, dy, 1), ShapeKind::prism, ShapeKind::pyramid};
+    case ContactType::vertex_vertex:
+      return {pyramid(0, 0, -1), pyramid(0, 0, 1), ShapeKind::pyramid, ShapeKind::pyramid};
+    case ContactType::parallel_edges: {
+      // The ridges cross at the origin at a small angle θ: nearly parallel edges in contact.
+      const double theta = log_uniform(r, family.angle);
+      const Vec3 axis(-std::sin(theta), std::cos(theta), 0);
+      return {roof_below(), ridge_above(axis, 0, 0), ShapeKind::prism, ShapeKind::prism};
+    }
+    case ContactType::none: break;
+  }
+  throw std::invalid_argument("build_contact: not a contact family");
+}
+
+constexpr ContactType kExactContacts[] = {ContactType::face_face,   ContactType::edge_edge,
+                                          ContactType::vertex_face, ContactType::edge_face,
+                                          ContactType::vertex_edge, ContactType::vertex_vertex};
 
 double max_projection(const std::vector<Vec3>& cloud, const Vec3& u) {
   double m = -std::numeric_limits<double>::infinity();
@@ -155,7 +272,7 @@ std::vector<Vec3> points_of(const Polytope& p) {
 
 }  // namespace
 
-std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle) {
+std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, double aspect) {
   if (n < 1) throw std::invalid_argument("generate_shape: vertex count must be at least 1");
   auto* r = static_cast<gsl_rng*>(gsl_rng_handle);
   std::vector<Vec3> cloud;
@@ -199,10 +316,135 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle) {
     case ShapeKind::uv_sphere:
       cloud = points_of(shapes::uv_sphere(std::max(n, 6)));
       break;
+    case ShapeKind::flat_points:
+      cloud.reserve(n);
+      for (int i = 0; i < n; ++i) {
+        const double radius = std::sqrt(uniform(r));
+        const double angle = 2 * M_PI * uniform(r);
+        cloud.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+      }
+      break;
+    case ShapeKind::collinear_points:
+      cloud.reserve(n);
+      for (int i = 0; i < n; ++i) cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
+      break;
+    case ShapeKind::duplicate_points: {
+      const Vec3 distinct[3] = {unit_vector(r), unit_vector(r), unit_vector(r)};
+      cloud.reserve(n);
+      for (int i = 0; i < n; ++i) cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
+      break;
+    }
+    case ShapeKind::single_point:
+      cloud.emplace_back(0.0, 0.0, 0.0);
+      break;
+    case ShapeKind::sliver:
+      cloud = points_of(shapes::box(Vec3(1, 1, 1 / aspect)));
+      break;
+    case ShapeKind::prism:
+      cloud = roof_below();
+      break;
+    case ShapeKind::pyramid:
+      cloud = pyramid(0, 0, -1);
+      break;
+    case ShapeKind::from_file:
+      throw std::invalid_argument("generate_shape: from_file clouds come from the family's file");
   }
   if (cloud.empty()) throw std::invalid_argument("generate_shape: unknown shape kind");
   return cloud;
 }
+
+namespace {
+
+/// Placement mode of one case (mixed draws overlapping with its fraction).
+Placement draw_placement(gsl_rng* r, const PlacementSpec& placement) {
+  if (placement.mode == "separated") return Placement::separated;
+  if (placement.mode == "overlapping") return Placement::overlapping;
+  if (placement.mode == "touching") return Placement::touching;
+  if (placement.mode == "random") return Placement::random;
+  if (placement.mode == "mixed")
+    return uniform(r) < placement.overlapping_fraction ? Placement::overlapping
+                                                       : Placement::separated;
+  throw std::invalid_argument("generate_case: unknown placement mode '" + placement.mode + "'");
+}
+
+/// The drawn gap relative to size: > 0 separated, < 0 overlapping, 0 otherwise.
+double draw_gap(gsl_rng* r, Placement mode, const PlacementSpec& placement) {
+  if (mode == Placement::separated) return log_uniform(r, placement.gap);
+  if (mode == Placement::overlapping) return -log_uniform(r, placement.depth);
+  return 0;
+}
+
+/// Two generated shapes, B placed along a random axis by the drawn gap, or at random.
+void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
+  CaseRecord& rec = out.record;
+  const int n_a = log_uniform_count(r, family.vertices_a);
+  const int n_b = log_uniform_count(r, family.vertices_b);
+  const double ratio = log_uniform(r, family.scale_ratio);
+  out.a = make_shape(r, family.shape_a, n_a, family, family.scale);
+  out.b = make_shape(r, family.shape_b, n_b, family, family.scale * ratio);
+
+  // Both vertex means are at the origin now; B moves along a random axis u.
+  const PlacementSpec& placement = family.placement;
+  const double size = pair_size(out.a, out.b);
+  Vec3 translation = Vec3::Zero();
+  const Placement mode = draw_placement(r, placement);
+  if (mode == Placement::random) {
+    const double half_width = placement.spread * size;
+    for (int k = 0; k < 3; ++k) translation[k] = (2 * uniform(r) - 1) * half_width;
+  } else {
+    const Vec3 u = unit_vector(r);
+    // gap > 0: B's extent along u starts gap·size after A's; gap < 0: they overlap by −gap·size.
+    const double gap = draw_gap(r, mode, placement);
+    const double shift = max_projection(out.a, u) + gap * size - min_projection(out.b, u);
+    translation = shift * u;
+    rec.intended_gap = gap;
+    out.direction = u;
+  }
+  for (Vec3& p : out.b) p += translation;
+  rec.placement = mode;
+}
+
+/// A contact configuration, turned by a signed axis permutation (exact), B moved by ε·size
+/// along the contact normal as the placement says, then scaled.
+void place_contact_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
+  CaseRecord& rec = out.record;
+  const ContactType type =
+      family.contact_any ? kExactContacts[gsl_rng_uniform_int(r, std::size(kExactContacts))]
+                         : family.contact;
+  ContactPair pair = build_contact(type, r, family);
+  rec.shape_a = pair.shape_a;
+  rec.shape_b = pair.shape_b;
+  // Scaling B about the contact point (the origin) keeps the contact.
+  const double ratio = log_uniform(r, family.scale_ratio);
+  for (Vec3& p : pair.b) p *= ratio;
+  const Mat3 turn = random_axis_rotation(r);
+  for (auto* cloud : {&pair.a, &pair.b})
+    for (Vec3& p : *cloud) p = turn * p;
+  const Vec3 normal = turn * Vec3::UnitZ();
+
+  const Placement mode = draw_placement(r, family.placement);
+  const double gap = draw_gap(r, mode, family.placement);
+  const double shift = gap * pair_size(pair.a, pair.b);
+  if (shift != 0)
+    for (Vec3& p : pair.b) p += shift * normal;
+  for (auto* cloud : {&pair.a, &pair.b})
+    for (Vec3& p : *cloud) p *= family.scale;
+  out.a = std::move(pair.a);
+  out.b = std::move(pair.b);
+  out.direction = normal;
+  rec.placement = mode;
+  rec.intended_gap = gap;
+}
+
+/// A pair from the family's cases file, exactly as stored.
+void take_stored_pair(const FamilySpec& family, std::uint64_t case_id, GeneratedCase& out) {
+  const StoredPair& pair = family.stored[case_id % family.stored.size()];
+  out.a = pair.a;
+  out.b = pair.b;
+  out.record.placement = Placement::as_given;
+}
+
+}  // namespace
 
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
   if (config.families.empty())
@@ -220,43 +462,19 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   rec.shape_b = family.shape_b;
   rec.scale = family.scale;
 
-  const int n_a = log_uniform_count(r, family.vertices_a);
-  const int n_b = log_uniform_count(r, family.vertices_b);
-  out.a = make_shape(r, family.shape_a, n_a, family);
-  out.b = make_shape(r, family.shape_b, n_b, family);
-
-  // Both vertex means are at the origin now; B moves along a random axis u.
-  const PlacementSpec& placement = family.placement;
-  const double size = pair_size(out.a, out.b);
-  Vec3 translation = Vec3::Zero();
-  Placement mode = Placement::random;
-  if (placement.mode == "separated") {
-    mode = Placement::separated;
-  } else if (placement.mode == "overlapping") {
-    mode = Placement::overlapping;
-  } else if (placement.mode == "mixed") {
-    mode = uniform(r) < placement.overlapping_fraction ? Placement::overlapping
-                                                       : Placement::separated;
-  } else if (placement.mode != "random") {
-    throw std::invalid_argument("generate_case: unknown placement mode '" + placement.mode + "'");
-  }
-
-  if (mode == Placement::random) {
-    const double half_width = placement.spread * size;
-    for (int k = 0; k < 3; ++k) translation[k] = (2 * uniform(r) - 1) * half_width;
-    rec.intended_gap = 0;
+  if (!family.stored.empty()) {
+    take_stored_pair(family, case_id, out);
+  } else if (family.contact != ContactType::none) {
+    place_contact_pair(r, family, out);
   } else {
-    const Vec3 u = unit_vector(r);
-    // gap > 0: B's extent along u starts gap·size after A's; gap < 0: they overlap by −gap·size.
-    const double gap = mode == Placement::separated ? log_uniform(r, placement.gap)
-                                                    : -log_uniform(r, placement.depth);
-    const double shift = max_projection(out.a, u) + gap * size - min_projection(out.b, u);
-    translation = shift * u;
-    rec.intended_gap = gap;
-    out.direction = u;
+    place_generated_pair(r, family, out);
   }
-  for (Vec3& p : out.b) p += translation;
-  rec.placement = mode;
+  // Large offsets: the whole pair moves, which changes no exact answer but every rounding.
+  if (family.offset.hi > 0) {
+    const Vec3 t = log_uniform(r, family.offset) * unit_vector(r);
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud) p += t;
+  }
 
   rec.vertices_a = static_cast<std::int32_t>(out.a.size());
   rec.vertices_b = static_cast<std::int32_t>(out.b.size());

@@ -7,6 +7,8 @@ std::string_view to_string(Placement p) {
     case Placement::separated: return "separated";
     case Placement::overlapping: return "overlapping";
     case Placement::random: return "random";
+    case Placement::touching: return "touching";
+    case Placement::as_given: return "as_given";
   }
   return "unknown";
 }
@@ -30,6 +32,28 @@ std::string_view to_string(ShapeKind s) {
     case ShapeKind::cone: return "cone";
     case ShapeKind::cylinder: return "cylinder";
     case ShapeKind::uv_sphere: return "uv_sphere";
+    case ShapeKind::flat_points: return "flat_points";
+    case ShapeKind::collinear_points: return "collinear_points";
+    case ShapeKind::duplicate_points: return "duplicate_points";
+    case ShapeKind::single_point: return "single_point";
+    case ShapeKind::sliver: return "sliver";
+    case ShapeKind::prism: return "prism";
+    case ShapeKind::pyramid: return "pyramid";
+    case ShapeKind::from_file: return "from_file";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(ContactType c) {
+  switch (c) {
+    case ContactType::none: return "none";
+    case ContactType::face_face: return "face-face";
+    case ContactType::edge_edge: return "edge-edge";
+    case ContactType::vertex_face: return "vertex-face";
+    case ContactType::edge_face: return "edge-face";
+    case ContactType::vertex_edge: return "vertex-edge";
+    case ContactType::vertex_vertex: return "vertex-vertex";
+    case ContactType::parallel_edges: return "parallel-edges";
   }
   return "unknown";
 }

@@ -121,7 +121,7 @@ mpr_tolerance = 1e-6
   CHECK(f0.vertices_b.lo == 4);
   CHECK(f0.vertices_b.hi == 256);
   CHECK(f0.scale == 1e3);
-  CHECK_FALSE(f0.rotate);
+  CHECK(f0.rotation == Rotation::none);
   CHECK(f0.weight == 3);
   // [family.placement] overrides mode and depth; the rest comes from [placement].
   CHECK(f0.placement.mode == "mixed");
@@ -140,7 +140,7 @@ mpr_tolerance = 1e-6
   CHECK(f1.vertices_b.lo == 200);
   CHECK(f1.vertices_b.hi == 200);
   CHECK(f1.scale == 1);
-  CHECK(f1.rotate);
+  CHECK(f1.rotation == Rotation::random);
   CHECK(f1.weight == 1);
   CHECK(f1.placement.mode == "separated");
   CHECK(f1.placement.depth.lo == 1e-5);
@@ -182,7 +182,7 @@ TEST_CASE("omitted keys take their documented defaults", "[unit][config]") {
   CHECK(f.vertices_a.lo == 32);
   CHECK(f.vertices_a.hi == 32);
   CHECK(f.scale == 1);
-  CHECK(f.rotate);
+  CHECK(f.rotation == Rotation::random);
   CHECK(f.weight == 1);
   const PlacementSpec defaults;
   CHECK(f.placement.mode == defaults.mode);
@@ -246,7 +246,7 @@ TEST_CASE("values of the wrong type are reported", "[unit][config]") {
                         Contains("expected an integer, got a string"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + "rotate = 1\n" + kAlgorithm),
                     Contains("exp.toml:7:") && Contains("key 'family[0].rotate'") &&
-                        Contains("expected a boolean"));
+                        Contains("expected true, false"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + "vertices = [4, 8.5]\n" + kAlgorithm),
                     Contains("exp.toml:7:") && Contains("key 'family[0].vertices'") &&
                         Contains("expected an integer, got a float"));
@@ -315,9 +315,13 @@ TEST_CASE("unknown names list the valid choices", "[unit][config]") {
                     Contains("exp.toml:9:") && Contains("key 'algorithm[0].name'") &&
                         Contains("unknown algorithm 'gjk-foo'; valid: gjk-bool, gjk-johnson, "
                                  "libccd-gjk, libccd-mpr"));
-  CHECK_THROWS_WITH(parse(kHead + "[placement]\nmode = \"touching\"\n" + kFamily + kAlgorithm),
+  CHECK_THROWS_WITH(parse(kHead + "[placement]\nmode = \"sideways\"\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:5:") && Contains("key 'placement.mode'") &&
-                        Contains("valid: separated, overlapping, mixed, random"));
+                        Contains("valid: separated, overlapping, mixed, random, touching"));
+  // Exact contact needs a contact family.
+  CHECK_THROWS_WITH(parse(kHead + "[placement]\nmode = \"touching\"\n" + kFamily + kAlgorithm),
+                    Contains("key 'family[0].placement.mode'") &&
+                        Contains("needs an exact contact family"));
 }
 
 TEST_CASE("'exact' as an algorithm is refused with an explanation", "[unit][config]") {

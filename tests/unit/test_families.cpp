@@ -62,7 +62,7 @@ ExperimentConfig varied_config() {
     FamilySpec f = family(k, 4, 200);
     f.placement.mode = modes[i % 4];
     f.weight = 1 + i;
-    f.rotate = i % 3 != 0;
+    f.rotation = i % 3 != 0 ? Rotation::random : Rotation::none;
     f.scale = i % 2 ? 1.0 : 0.001;
     families.push_back(f);
     ++i;

@@ -32,12 +32,25 @@ struct PlacementSpec {
   /// separated: gap drawn log-uniformly from `gap`; overlapping: overlap drawn log-uniformly
   /// from `depth`; random: B's centre uniform in a cube of half-width `spread` around A's.
   /// `mixed` (not a Placement value): each case is overlapping with `overlapping_fraction`,
-  /// else separated.
+  /// else separated. touching (contact families only): exact contact, no ε.
   std::string mode = "mixed";  ///< "separated", "overlapping", "mixed" or "random"
   Interval gap{1e-6, 10};      ///< relative to the pair's size
   Interval depth{1e-6, 0.5};   ///< relative to the pair's size
   double overlapping_fraction = 0.5;
   double spread = 1.0;         ///< relative to the pair's size
+};
+
+/// How each shape of a family is rotated.
+enum class Rotation : std::uint8_t {
+  none,    ///< as generated
+  random,  ///< uniform on SO(3) (coordinates are rounded: flat clouds become nearly flat)
+  axes,    ///< one of the 24 signed axis permutations: exact, so flat stays flat
+};
+
+/// A pair read from a cases file (the `file` family).
+struct StoredPair {
+  std::string id;
+  std::vector<Vec3> a, b;
 };
 
 /// One family of cases: the generator of both shapes and how they are placed.
@@ -51,9 +64,24 @@ struct FamilySpec {
   Interval vertices_a{32, 32};
   Interval vertices_b{32, 32};
   double scale = 1;             ///< every coordinate is multiplied by this
-  bool rotate = true;           ///< random rotations uniform on SO(3)
+  Rotation rotation = Rotation::random;
   double weight = 1;            ///< relative share of the cases
   PlacementSpec placement;
+
+  // ---- degenerate and adversarial families ----
+  /// Contact families (shape = "contact"): the configuration, built in exact contact with
+  /// the contact normal along a random signed axis; placement then moves B by +ε·size
+  /// (separated, ε from placement.gap), −ε·size (overlapping, from placement.depth), or not at
+  /// all (touching). contact_any draws one of the six exact types per case.
+  ContactType contact = ContactType::none;
+  bool contact_any = false;
+  Interval angle{1e-6, 1e-6};     ///< parallel-edges contact: angle in radians (log-uniform)
+  Interval aspect{10, 10};        ///< sliver: aspect ratio (log-uniform)
+  Interval scale_ratio{1, 1};     ///< B's scale relative to A's (log-uniform): scale disparity
+  Interval offset{0, 0};          ///< both shapes moved by a random vector of this length
+                                  ///< (length units, log-uniform; 0: not moved)
+  std::string path;               ///< the `file` family's cases file (as written in the file)
+  std::vector<StoredPair> stored; ///< its pairs; case i uses pair i mod size
 };
 
 /// One algorithm to run, with its options.

@@ -31,7 +31,9 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
 /// Points of one generator (before rotation, scale and placement); `n` (>= 1) is the requested
 /// vertex count. The point generators give exactly n points; the demo shapes adjust it: box has
 /// 8 vertices whatever n, cone(max(n, 4)), cylinder(n rounded up to even, at least 6) and
-/// uv_sphere(max(n, 6)), which rounds down (see geometry/shapes.hpp). `gsl_rng` is a gsl_rng*.
-std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng);
+/// uv_sphere(max(n, 6)), which rounds down (see geometry/shapes.hpp). single_point, sliver,
+/// prism and pyramid ignore n; `aspect` is the sliver's aspect ratio (a box 1 × 1 × 1/aspect).
+/// `gsl_rng` is a gsl_rng*.
+std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng, double aspect = 10);
 
 }  // namespace gjklab::experiment

@@ -18,7 +18,13 @@
 namespace gjklab::experiment {
 
 /// How the pair was placed relative to each other.
-enum class Placement : std::uint8_t { separated, overlapping, random };
+enum class Placement : std::uint8_t {
+  separated,    ///< apart by a drawn gap along an axis
+  overlapping,  ///< extents overlap by a drawn depth along an axis
+  random,       ///< B's centre uniform in a cube around A's
+  touching,     ///< built in exact contact (distance exactly 0), no gap drawn
+  as_given,     ///< the pair exactly as read from a cases file
+};
 
 /// The exact answer's class: separated, within the touching band, or intersecting.
 /// The band is |distance| or depth ≤ touching_band · size (see ExperimentConfig).
@@ -34,6 +40,27 @@ enum class ShapeKind : std::uint8_t {
   cone,           ///< demo cone (apex + ring)
   cylinder,       ///< demo cylinder (two rings)
   uv_sphere,      ///< demo UV sphere
+  flat_points,    ///< points uniform in the unit disk of the plane z = 0 (exactly coplanar)
+  collinear_points,  ///< points uniform on the segment [-1, 1] of the x axis (exactly collinear)
+  duplicate_points,  ///< n points drawn from only three distinct points on the unit sphere
+  single_point,   ///< one point at the origin, whatever n
+  sliver,         ///< box of extents 1 × 1 × 1/aspect (aspect drawn from the family's range)
+  prism,          ///< triangular prism with its ridge along y at z = 0 (contact families)
+  pyramid,        ///< square pyramid with its apex at the origin (contact families)
+  from_file,      ///< a cloud read from a cases file
+};
+
+/// Contact configurations of the `contact` families, built from exactly representable
+/// coordinates so that the exact distance is 0 before any ε is applied.
+enum class ContactType : std::uint8_t {
+  none,
+  face_face,
+  edge_edge,
+  vertex_face,
+  edge_face,
+  vertex_edge,
+  vertex_vertex,
+  parallel_edges,  ///< two edges at a small angle (not exactly representable)
 };
 
 /// The case as generated: everything needed to describe and regenerate it.
@@ -94,5 +121,6 @@ struct CaseResult {
 std::string_view to_string(Placement p);
 std::string_view to_string(ContactClass c);
 std::string_view to_string(ShapeKind s);
+std::string_view to_string(ContactType c);
 
 }  // namespace gjklab::experiment
