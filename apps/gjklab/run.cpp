@@ -47,6 +47,10 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
         << report.seconds << " s (" << static_cast<double>(report.cases) / report.seconds
         << " cases/s), archive " << report.output.string() << "\n\n";
     experiment::print_summary(out, report.summary);
+    if (!report.families.empty()) {
+      out << "\nper family:\n";
+      experiment::print_family_table(out, report.families);
+    }
     return 0;
   } catch (const experiment::ConfigError& e) {
     err << "gjklab run: " << e.what() << "\n";
@@ -74,12 +78,18 @@ int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream
     }
     out << "\n";
     experiment::SummaryBuilder summary(h.algorithm_names);
+    experiment::FamilySummaryBuilder by_family(h.family_names, h.algorithm_names);
     std::size_t kept = 0;
     for (const auto& r : archive.results) {
       summary.add(r);
+      by_family.add(r);
       kept += r.geometry.has_value();
     }
     experiment::print_summary(out, summary.build());
+    if (h.family_names.size() > 1) {
+      out << "\nper family:\n";
+      experiment::print_family_table(out, by_family.build());
+    }
     out << kept << " cases keep their geometry (wrong or not converged)\n";
     return 0;
   } catch (const std::exception& e) {

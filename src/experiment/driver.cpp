@@ -207,6 +207,9 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   std::vector<std::string> names;
   for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.name);
   SummaryBuilder summary(names);
+  std::vector<std::string> family_names;
+  for (const FamilySpec& f : config.families) family_names.push_back(f.name);
+  FamilySummaryBuilder by_family(family_names, names);
   Progress progress(options.progress, options.live_progress, total);
   const auto start = Clock::now();
 
@@ -237,13 +240,17 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
     // The archive keeps its temporary name: nothing that looks complete is left behind.
     if (failure) std::rethrow_exception(failure);
     writer.append(batch);
-    for (const CaseResult& r : batch) summary.add(r);
+    for (const CaseResult& r : batch) {
+      summary.add(r);
+      by_family.add(r);
+    }
     progress.update(first + count);
   }
   progress.update(total, true);
   writer.finish(utc_now(), true);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.summary = summary.build();
+  if (config.families.size() > 1) report.families = by_family.build();
   report.cases = total;
   return report;
 }

@@ -105,4 +105,48 @@ void print_summary(std::ostream& out, const RunSummary& s) {
          "wrong = boolean differs from the exact one outside the touching band)\n";
 }
 
+FamilySummaryBuilder::FamilySummaryBuilder(std::vector<std::string> family_names,
+                                           std::vector<std::string> algorithm_names)
+    : family_names_(std::move(family_names)) {
+  builders_.assign(family_names_.size(), SummaryBuilder(algorithm_names));
+}
+
+void FamilySummaryBuilder::add(const CaseResult& result) {
+  if (result.record.family < builders_.size()) builders_[result.record.family].add(result);
+}
+
+std::vector<std::pair<std::string, RunSummary>> FamilySummaryBuilder::build() const {
+  std::vector<std::pair<std::string, RunSummary>> out;
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    RunSummary s = builders_[i].build();
+    if (s.cases > 0) out.emplace_back(family_names_[i], std::move(s));
+  }
+  return out;
+}
+
+void print_family_table(std::ostream& out,
+                        const std::vector<std::pair<std::string, RunSummary>>& families) {
+  char line[256];
+  std::snprintf(line, sizeof line, "%-24s %-14s %7s %7s %10s  %s\n", "family", "algorithm",
+                "cases", "wrong", "err_max", "not converged");
+  out << line;
+  for (const auto& [family, s] : families) {
+    for (const AlgorithmSummary& a : s.algorithms) {
+      std::string stops;
+      for (Termination t : kAllTerminations) {
+        const auto n = a.terminations[static_cast<std::size_t>(t)];
+        if (t != Termination::converged && n > 0)
+          stops += std::string(stops.empty() ? "" : " ") + std::string(to_string(t)) + "=" +
+                   std::to_string(n);
+      }
+      std::snprintf(line, sizeof line, "%-24s %-14s %7llu %7llu %10s  %s\n", family.c_str(),
+                    a.name.c_str(), static_cast<unsigned long long>(a.cases),
+                    static_cast<unsigned long long>(a.wrong_booleans),
+                    a.distances ? format("%.2e", a.rel_error_max).c_str() : "-",
+                    stops.empty() ? "-" : stops.c_str());
+      out << line;
+    }
+  }
+}
+
 }  // namespace gjklab::experiment

@@ -27,6 +27,7 @@ struct RunOptions {
 struct RunReport {
   std::filesystem::path output;
   RunSummary summary;
+  std::vector<std::pair<std::string, RunSummary>> families;  ///< per family, when several
   double seconds = 0;
   std::uint64_t cases = 0;
 };

@@ -53,4 +53,23 @@ class SummaryBuilder {
 /// Prints the summary as an aligned text table.
 void print_summary(std::ostream& out, const RunSummary& summary);
 
+/// One summary per family (index = CaseRecord::family), accumulated case by case.
+class FamilySummaryBuilder {
+ public:
+  FamilySummaryBuilder(std::vector<std::string> family_names,
+                       std::vector<std::string> algorithm_names);
+  void add(const CaseResult& result);
+  /// (family name, its summary) for every family with at least one case.
+  std::vector<std::pair<std::string, RunSummary>> build() const;
+
+ private:
+  std::vector<std::string> family_names_;
+  std::vector<SummaryBuilder> builders_;
+};
+
+/// Prints one row per family and algorithm: cases, wrong booleans, the largest distance
+/// error relative to size, and every termination other than converged.
+void print_family_table(std::ostream& out,
+                        const std::vector<std::pair<std::string, RunSummary>>& families);
+
 }  // namespace gjklab::experiment
