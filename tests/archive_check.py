@@ -23,9 +23,13 @@ CASES = {"case_id": np.uint64, "family": np.uint32, "shape_a": SHAPES, "shape_b"
 EXACT = {"intersect": bool, "distance": np.float64, "distance2_num": str, "distance2_den": str,
          "depth": np.float64, "hull_vertices_a": np.int32, "hull_vertices_b": np.int32,
          "contact": CONTACTS}
+FAILURES = {"none": 0, "touching_band": 1, "step_limit": 2, "no_progress": 3,
+            "degenerate_simplex": 4, "cycling": 5, "non_finite": 6, "wrong_boolean": 7,
+            "distance_error": 8}
 ALGORITHM = {"intersect": bool, "distance": np.float64, "abs_error": np.float64,
              "rel_error": np.float64, "boolean_correct": bool, "iterations": np.int32,
-             "support_calls": np.int32, "termination": TERMINATIONS, "time_ns": np.float64}
+             "support_calls": np.int32, "termination": TERMINATIONS, "time_ns": np.float64,
+             "failure": FAILURES}
 GEOMETRY = {"case_id": np.uint64, "a_offset": np.uint64, "a_count": np.uint64,
             "b_offset": np.uint64, "b_count": np.uint64}
 

@@ -85,7 +85,7 @@ std::vector<T> gather(std::span<const CaseResult> results, F field) {
 
 // The HDF5 types of the archive, shared by the writer and the reader.
 struct Types {
-  h5::Handle boolean, string, shape, placement, contact, termination;
+  h5::Handle boolean, string, shape, placement, contact, termination, failure;
 
   explicit Types(const h5::Context& cx)
       : boolean(h5::bool_type(cx)),
@@ -93,7 +93,8 @@ struct Types {
         shape(h5::enum_type<ShapeKind>(cx)),
         placement(h5::enum_type<Placement>(cx)),
         contact(h5::enum_type<ContactClass>(cx)),
-        termination(h5::enum_type<Termination>(cx)) {}
+        termination(h5::enum_type<Termination>(cx)),
+        failure(h5::enum_type<FailureClass>(cx)) {}
 };
 
 }  // namespace
@@ -111,7 +112,7 @@ struct ArchiveWriter::Impl {
   };
   struct AlgorithmColumns {
     h5::Column intersect, distance, abs_error, rel_error, boolean_correct, iterations,
-        support_calls, termination, time_ns;
+        support_calls, termination, time_ns, failure;
   };
   struct GeometryColumns {
     h5::Column case_id, a_offset, a_count, b_offset, b_count, vertices_a, vertices_b;
@@ -137,7 +138,7 @@ struct ArchiveWriter::Impl {
       for (AlgorithmColumns& a : algorithms)
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
-                    &a.iterations, &a.support_calls, &a.termination, &a.time_ns});
+                    &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure});
       for (h5::Column* c : all)
         cx.check(c->close(), "cannot close dataset " + c->path());
     }
@@ -263,6 +264,7 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
           column(gi, p, "support_calls", i32f, i32m, chunk),
           column(gi, p, "termination", t.termination.get(), t.termination.get(), chunk),
           column(gi, p, "time_ns", f64f, f64m, chunk),
+          column(gi, p, "failure", t.failure.get(), t.failure.get(), chunk),
       });
     }
   }
@@ -327,6 +329,7 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     a.support_calls.append(cx, gather<std::int32_t>(rs, [&](R r) { return alg(r).support_calls; }));
     a.termination.append(cx, gather<Termination>(rs, [&](R r) { return alg(r).termination; }));
     a.time_ns.append(cx, gather<double>(rs, [&](R r) { return alg(r).time_ns; }));
+    a.failure.append(cx, gather<FailureClass>(rs, [&](R r) { return alg(r).failure; }));
   }
   {
     GeometryColumns& g = c.geometry;
@@ -564,6 +567,8 @@ Archive read_archive(const fs::path& path) {
       const auto termination =
           h5::read_column<Termination>(cx, gi, p, "termination", t.termination.get(), n);
       const auto time_ns = h5::read_column<double>(cx, gi, p, "time_ns", f64m, n);
+      const auto failure =
+          h5::read_column<FailureClass>(cx, gi, p, "failure", t.failure.get(), n);
       for (std::size_t i = 0; i < n; ++i) {
         AlgorithmRecord& ar = a.results[i].algorithms[k];
         ar.intersect = intersect[i] != 0;
@@ -575,6 +580,7 @@ Archive read_archive(const fs::path& path) {
         ar.support_calls = support[i];
         ar.termination = termination[i];
         ar.time_ns = time_ns[i];
+        ar.failure = failure[i];
       }
     }
   }

@@ -192,6 +192,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       }
     }
   }
+  for (AlgorithmRecord& r : result.algorithms)
+    r.failure = classify_failure(r, result.exact ? &*result.exact : nullptr, config.touching_band);
   if (worth_keeping(result, config.touching_band))
     result.geometry = CaseGeometry{std::move(generated.a), std::move(generated.b)};
   return result;

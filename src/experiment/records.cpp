@@ -1,5 +1,7 @@
 #include "gjklab/experiment/records.hpp"
 
+#include <cmath>
+
 namespace gjklab::experiment {
 
 std::string_view to_string(Placement p) {
@@ -56,6 +58,41 @@ std::string_view to_string(ContactType c) {
     case ContactType::parallel_edges: return "parallel-edges";
   }
   return "unknown";
+}
+
+std::string_view to_string(FailureClass f) {
+  switch (f) {
+    case FailureClass::none: return "none";
+    case FailureClass::touching_band: return "touching_band";
+    case FailureClass::step_limit: return "step_limit";
+    case FailureClass::no_progress: return "no_progress";
+    case FailureClass::degenerate_simplex: return "degenerate_simplex";
+    case FailureClass::cycling: return "cycling";
+    case FailureClass::non_finite: return "non_finite";
+    case FailureClass::wrong_boolean: return "wrong_boolean";
+    case FailureClass::distance_error: return "distance_error";
+  }
+  return "unknown";
+}
+
+FailureClass classify_failure(const AlgorithmRecord& r, const ExactRecord* exact, double band) {
+  const bool wrong_distance = !std::isnan(r.rel_error) && r.rel_error > band;
+  const bool wrong_boolean = exact && r.intersect != exact->intersect;
+  if (exact && exact->contact == ContactClass::touching_band && (wrong_boolean || wrong_distance))
+    return FailureClass::touching_band;
+  switch (r.termination) {
+    case Termination::converged: break;
+    case Termination::step_limit: return FailureClass::step_limit;
+    case Termination::no_progress: return FailureClass::no_progress;
+    case Termination::degenerate_simplex: return FailureClass::degenerate_simplex;
+    case Termination::cycling: return FailureClass::cycling;
+    case Termination::numerical_failure:
+    case Termination::invalid_input: return FailureClass::non_finite;
+  }
+  if (!std::isfinite(r.distance) && !std::isnan(r.distance)) return FailureClass::non_finite;
+  if (!r.boolean_correct) return FailureClass::wrong_boolean;
+  if (wrong_distance) return FailureClass::distance_error;
+  return FailureClass::none;
 }
 
 }  // namespace gjklab::experiment

@@ -46,6 +46,7 @@ void SummaryBuilder::add(const CaseResult& result) {
     if (!std::isnan(r.rel_error)) c.rel_errors.push_back(r.rel_error);
     if (!std::isnan(r.time_ns)) c.times.push_back(r.time_ns);
     ++c.counts.terminations[static_cast<std::size_t>(r.termination)];
+    ++c.counts.failures[static_cast<std::size_t>(r.failure)];
     c.iteration_sum += r.iterations;
     c.counts.iterations_max = std::max(c.counts.iterations_max, r.iterations);
   }
@@ -100,6 +101,17 @@ void print_summary(std::ostream& out, const RunSummary& s) {
       if (n > 0) out << " " << to_string(t) << "=" << n;
     }
     out << "\n";
+  }
+  out << "failure classes (other than none):\n";
+  for (const AlgorithmSummary& a : s.algorithms) {
+    out << "  " << a.name << ":";
+    bool any = false;
+    for (std::size_t f = 1; f < a.failures.size(); ++f) {
+      if (a.failures[f] == 0) continue;
+      out << " " << to_string(static_cast<FailureClass>(f)) << "=" << a.failures[f];
+      any = true;
+    }
+    out << (any ? "\n" : " -\n");
   }
   out << "(errors are |distance − exact| / size, size = larger bounding-box diagonal; "
          "wrong = boolean differs from the exact one outside the touching band)\n";

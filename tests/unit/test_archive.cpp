@@ -112,6 +112,7 @@ CaseResult make_result(std::uint64_t i, bool oracle) {
     a.support_calls = static_cast<std::int32_t>(i * 4 + 1);
     a.termination = kAllTerminations[(i + static_cast<std::uint64_t>(k)) % kAllTerminations.size()];
     a.time_ns = i % 6 == 0 ? kNaN : 125.5 * static_cast<double>(i);
+    a.failure = static_cast<FailureClass>(i % 9);
   }
   if (i % 7 == 3) {  // some cases keep their geometry, one of them with an empty cloud
     CaseGeometry& g = r.geometry.emplace();
@@ -189,6 +190,7 @@ void check_same_result(const CaseResult& x, const CaseResult& y) {
     CHECK(a.support_calls == b.support_calls);
     CHECK(a.termination == b.termination);
     CHECK(same(a.time_ns, b.time_ns));
+    CHECK(a.failure == b.failure);
   }
 
   REQUIRE(x.geometry.has_value() == y.geometry.has_value());

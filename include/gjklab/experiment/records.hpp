@@ -30,6 +30,20 @@ enum class Placement : std::uint8_t {
 /// The band is |distance| or depth ≤ touching_band · size (see ExperimentConfig).
 enum class ContactClass : std::uint8_t { separated, touching_band, intersecting };
 
+/// Why a query counts as failing, most specific first; `none` for a converged query whose
+/// boolean is right and whose distance error is within the touching band.
+enum class FailureClass : std::uint8_t {
+  none,
+  touching_band,       ///< the answer differs from the exact one, but the pair is in the band
+  step_limit,          ///< stopped by max_iterations
+  no_progress,         ///< stopped because ‖v‖ did not decrease
+  degenerate_simplex,  ///< the sub-algorithm could not decide
+  cycling,             ///< a support point came back
+  non_finite,          ///< a NaN or infinity appeared
+  wrong_boolean,       ///< converged, yet the boolean is wrong outside the band
+  distance_error,      ///< converged, boolean right, distance error above the band
+};
+
 /// Which cloud generator made a shape.
 enum class ShapeKind : std::uint8_t {
   sphere_points,  ///< points uniform on the unit sphere
@@ -104,6 +118,7 @@ struct AlgorithmRecord {
   std::int32_t support_calls = 0;
   Termination termination = Termination::converged;
   double time_ns = std::numeric_limits<double>::quiet_NaN();  ///< median ns per query, or NaN
+  FailureClass failure = FailureClass::none;
 };
 
 /// Both clouds of a case, kept in the archive when any answer was wrong or not converged.
@@ -122,5 +137,10 @@ std::string_view to_string(Placement p);
 std::string_view to_string(ContactClass c);
 std::string_view to_string(ShapeKind s);
 std::string_view to_string(ContactType c);
+std::string_view to_string(FailureClass f);
+
+/// The failure class of an algorithm's record (see FailureClass); `band` is the touching band
+/// relative to size. Without an exact answer only the termination can fail.
+FailureClass classify_failure(const AlgorithmRecord& r, const ExactRecord* exact, double band);
 
 }  // namespace gjklab::experiment
