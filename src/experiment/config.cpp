@@ -1,5 +1,6 @@
 #include "gjklab/experiment/config.hpp"
 
+#include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
 #include <toml++/toml.h>
@@ -509,9 +510,20 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
 
 /// The option keys of each algorithm beyond `name` and `max_iterations`.
 std::vector<std::string_view> own_option_keys(std::string_view algorithm) {
-  if (algorithm == "gjk-johnson") return {"relative_gap", "absolute_gap_squared", "relative_contact"};
-  if (algorithm == "libccd-gjk" || algorithm == "libccd-mpr") return {"mpr_tolerance"};
-  return {};
+  std::vector<std::string_view> keys = option_keys(algorithm);
+  std::erase(keys, std::string_view("max_iterations"));
+  return keys;
+}
+
+/// Reads one option's number(s) from the TOML node: a number, or [x, y, z] for a direction.
+std::vector<double> option_values(const Section& s, std::string_view key) {
+  const toml::node& node = *s.find(key);
+  if (option_arity(key) == 1) return {s.number_value(node, key)};
+  const toml::array* array = node.as_array();
+  if (!array || array->size() != 3)
+    s.fail(node, key, "expected [x, y, z], got " + std::string(type_name(node)));
+  return {s.number_value(*array->get(0), key), s.number_value(*array->get(1), key),
+          s.number_value(*array->get(2), key)};
 }
 
 /// The algorithms an experiment may list: the registry without the exact oracle.
@@ -549,18 +561,17 @@ AlgorithmSpec read_algorithm(const Section& s) {
 
   AlgorithmSpec spec;
   spec.name = *name;
-  AlgorithmOptions& o = spec.options;
-  if (const auto n = s.integer("max_iterations", 1, std::numeric_limits<int>::max())) {
-    const int iterations = static_cast<int>(*n);
-    if (spec.name == "gjk-bool") o.gjk_boolean.max_iterations = iterations;
-    else if (spec.name == "gjk-johnson") o.gjk_distance.max_iterations = iterations;
-    else if (spec.name == "libccd-gjk" || spec.name == "libccd-mpr") o.libccd.max_iterations = iterations;
-    else o.set_max_iterations(iterations);
+  spec.label = *name;
+  if (const toml::node* n = s.find("max_iterations"))
+    s.integer_value(*n, "max_iterations", 1, std::numeric_limits<int>::max());
+  for (std::string_view key : option_keys(*name)) {
+    if (!s.find(key)) continue;
+    try {
+      set_option(spec, key, option_values(s, key));
+    } catch (const std::invalid_argument& e) {
+      s.fail(*s.find(key), key, e.what());
+    }
   }
-  if (const auto v = s.non_negative("relative_gap")) o.gjk_distance.relative_gap = *v;
-  if (const auto v = s.non_negative("absolute_gap_squared")) o.gjk_distance.absolute_gap_squared = *v;
-  if (const auto v = s.non_negative("relative_contact")) o.gjk_distance.relative_contact = *v;
-  if (const auto v = s.positive("mpr_tolerance")) o.libccd.mpr_tolerance = *v;
   return spec;
 }
 
@@ -680,22 +691,6 @@ ExperimentConfig load_experiment(const std::filesystem::path& path) {
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw ConfigError(path.string(), 0, "", "cannot read");
   return parse_experiment(text, path.string());
-}
-
-std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec) {
-  const AlgorithmOptions& o = spec.options;
-  const std::string& n = spec.name;
-  if (n == "gjk-bool") return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)}};
-  if (n == "gjk-johnson")
-    return {{"max_iterations", std::to_string(o.gjk_distance.max_iterations)},
-            {"relative_gap", round_trip(o.gjk_distance.relative_gap)},
-            {"absolute_gap_squared", round_trip(o.gjk_distance.absolute_gap_squared)},
-            {"relative_contact", round_trip(o.gjk_distance.relative_contact)}};
-  if (n == "libccd-gjk" || n == "libccd-mpr")
-    return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
-            {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
-  if (n == "exact") return {{"depth", o.oracle.depth ? "true" : "false"}};
-  return {};
 }
 
 }  // namespace gjklab::experiment

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/provenance.hpp"
@@ -136,7 +137,7 @@ ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases
   h.provenance = build_provenance();
   for (const FamilySpec& f : config.families) h.family_names.push_back(f.name);
   for (const AlgorithmSpec& a : config.algorithms) {
-    h.algorithm_names.push_back(a.name);
+    h.algorithm_names.push_back(a.label);
     h.algorithm_options.push_back(describe_options(a));
   }
   h.oracle = config.oracle;
@@ -207,7 +208,7 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   ArchiveWriter writer(report.output, archive_header(config, total), options.force);
 
   std::vector<std::string> names;
-  for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.name);
+  for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.label);
   SummaryBuilder summary(names);
   std::vector<std::string> family_names;
   for (const FamilySpec& f : config.families) family_names.push_back(f.name);

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/config.hpp"
 
 using namespace gjklab;
@@ -425,10 +426,11 @@ mpr_tolerance = 3.3e-7
 )");
   REQUIRE(c.algorithms.size() == 3);
   const auto bool_options = as_map(describe_options(c.algorithms[0]));
-  CHECK(bool_options == std::map<std::string, std::string>{{"max_iterations", "17"}});
+  CHECK(bool_options == std::map<std::string, std::string>{{"max_iterations", "17"},
+                                                            {"initial_direction", "1 0 0"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
-  CHECK(johnson.size() == 4);
+  CHECK(johnson.size() == 5);
   CHECK(johnson.at("max_iterations") == std::to_string(GjkDistanceDefaults::max_iterations));
   CHECK(std::stod(johnson.at("relative_gap")) == 0.1);
   CHECK(std::stod(johnson.at("relative_contact")) == GjkDistanceDefaults::relative_contact);
@@ -438,5 +440,11 @@ mpr_tolerance = 3.3e-7
   CHECK(ccd.size() == 2);
   CHECK(ccd.at("max_iterations") == std::to_string(peers::LibccdDefaults::max_iterations));
   CHECK(std::stod(ccd.at("mpr_tolerance")) == 3.3e-7);
+
+  // The archived text rebuilds the same options.
+  for (const AlgorithmSpec& spec : c.algorithms) {
+    const AlgorithmSpec back = spec_from_description(spec.name, describe_options(spec));
+    CHECK(describe_options(back) == describe_options(spec));
+  }
   CHECK(ccd.count("relative_gap") == 0);
 }

@@ -86,7 +86,8 @@ struct FamilySpec {
 
 /// One algorithm to run, with its options.
 struct AlgorithmSpec {
-  std::string name;
+  std::string name;   ///< registry name
+  std::string label;  ///< result group name: the name, or "name@key=value" in a sweep
   AlgorithmOptions options;
 };
 
@@ -112,7 +113,5 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
 /// Reads and parses an experiment file. Throws ConfigError (also for an unreadable file).
 ExperimentConfig load_experiment(const std::filesystem::path& path);
 
-/// (key, value) pairs of one algorithm's options as recorded in the archive.
-std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec);
 
 }  // namespace gjklab::experiment
