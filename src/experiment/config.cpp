@@ -575,6 +575,84 @@ AlgorithmSpec read_algorithm(const Section& s) {
   return spec;
 }
 
+constexpr std::string_view kGeometrySweeps[] = {"offset", "scale"};
+
+/// Text of a sweep value in a result label: "8", "1e-06", "0,1,0".
+std::string value_label(const std::vector<double>& v) {
+  std::string out;
+  for (double x : v) out += (out.empty() ? "" : ",") + round_trip(x);
+  return out;
+}
+
+/// [sweep]: parameter = an algorithm option (each value becomes its own algorithm group) or a
+/// geometry parameter (each value its own family group, on the same base pairs).
+void read_sweep(const Section& s, ExperimentConfig& config) {
+  s.allow_only({"parameter", "values"});
+  const auto parameter = s.string("parameter");
+  if (!parameter) s.missing("parameter");
+  const toml::node* values_node = s.find("values");
+  if (!values_node) s.missing("values");
+  const toml::array* values = values_node->as_array();
+  if (!values || values->empty())
+    s.fail(*values_node, "values", "expected a non-empty array of values");
+
+  std::vector<std::vector<double>> numbers;
+  for (std::size_t i = 0; i < values->size(); ++i) {
+    const toml::node& v = *values->get(i);
+    if (const toml::array* triple = v.as_array()) {
+      std::vector<double> xs;
+      for (std::size_t k = 0; k < triple->size(); ++k)
+        xs.push_back(s.number_value(*triple->get(k), "values"));
+      numbers.push_back(xs);
+    } else {
+      numbers.push_back({s.number_value(v, "values")});
+    }
+  }
+
+  if (std::find(std::begin(kGeometrySweeps), std::end(kGeometrySweeps), *parameter) !=
+      std::end(kGeometrySweeps)) {
+    GeometrySweep sweep{*parameter, {}};
+    for (const auto& v : numbers) {
+      const bool ok = v.size() == 1 && (*parameter == "offset" ? v[0] >= 0 : v[0] > 0);
+      if (!ok)
+        s.fail(*values_node, "values",
+               *parameter == "offset" ? "offsets must be numbers >= 0" : "scales must be numbers > 0");
+      sweep.values.push_back(v[0]);
+    }
+    config.geometry_sweep = std::move(sweep);
+    return;
+  }
+
+  std::vector<std::string_view> sweepable{std::begin(kGeometrySweeps), std::end(kGeometrySweeps)};
+  bool taken = false;
+  std::vector<AlgorithmSpec> expanded;
+  for (const AlgorithmSpec& spec : config.algorithms) {
+    const auto keys = option_keys(spec.name);
+    for (std::string_view k : keys)
+      if (std::find(sweepable.begin(), sweepable.end(), k) == sweepable.end())
+        sweepable.push_back(k);
+    if (std::find(keys.begin(), keys.end(), *parameter) == keys.end()) {
+      expanded.push_back(spec);  // this algorithm does not take the parameter: run it once
+      continue;
+    }
+    taken = true;
+    for (const auto& v : numbers) {
+      AlgorithmSpec copy = spec;
+      try {
+        set_option(copy, *parameter, v);
+      } catch (const std::invalid_argument& e) {
+        s.fail(*values_node, "values", e.what());
+      }
+      copy.label = spec.name + "@" + *parameter + "=" + value_label(v);
+      expanded.push_back(std::move(copy));
+    }
+  }
+  if (!taken)
+    s.fail(*s.find("parameter"), "parameter",
+           "no listed algorithm takes '" + *parameter + "'; valid: " + join(sweepable));
+  config.algorithms = std::move(expanded);
+}
+
 bool valid_experiment_name(std::string_view name) {
   if (name.empty() || name.front() == '.') return false;
   return std::all_of(name.begin(), name.end(), [](char c) {
@@ -596,7 +674,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
 
   const Section top(source, root, "", 1);
   top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle",
-                  "timing", "placement", "family", "algorithm"});
+                  "timing", "placement", "family", "algorithm", "sweep"});
 
   ExperimentConfig config;
   config.source = source;
@@ -680,6 +758,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
                    std::to_string(j) + "]; list each algorithm once");
     config.algorithms.push_back(std::move(spec));
   }
+  if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);
   return config;
 }
 
@@ -691,6 +770,19 @@ ExperimentConfig load_experiment(const std::filesystem::path& path) {
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw ConfigError(path.string(), 0, "", "cannot read");
   return parse_experiment(text, path.string());
+}
+
+std::vector<std::string> ExperimentConfig::result_family_names() const {
+  std::vector<std::string> names;
+  for (const FamilySpec& f : families) {
+    if (!geometry_sweep) {
+      names.push_back(f.name);
+      continue;
+    }
+    for (double v : geometry_sweep->values)
+      names.push_back(f.name + " " + geometry_sweep->parameter + "=" + round_trip(v));
+  }
+  return names;
 }
 
 }  // namespace gjklab::experiment

@@ -135,7 +135,7 @@ ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases
   h.cases_planned = cases;
   h.start_time = utc_now();
   h.provenance = build_provenance();
-  for (const FamilySpec& f : config.families) h.family_names.push_back(f.name);
+  h.family_names = config.result_family_names();
   for (const AlgorithmSpec& a : config.algorithms) {
     h.algorithm_names.push_back(a.label);
     h.algorithm_options.push_back(describe_options(a));
@@ -178,11 +178,15 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       result.algorithms.back().time_ns =
           time_query(algorithm, a, b, spec.options, config.repetitions);
   }
-  // A boolean that disagrees with an intersecting exact answer may be inside the touching
-  // band; only the exact depth can tell, so compute it now if it was not asked for.
+  // A converged boolean that disagrees with an intersecting exact answer may be inside the
+  // touching band; only the exact depth can tell, so compute it now if it was not asked for.
+  // (A query stopped early, e.g. by its step limit, fails by its termination anyway; its
+  // disagreement alone does not pay for the depth, the costliest exact computation.)
   if (answer && answer->intersect && !answer->depth) {
-    const bool disagreement = std::any_of(result.algorithms.begin(), result.algorithms.end(),
-                                          [](const AlgorithmRecord& r) { return !r.intersect; });
+    const bool disagreement =
+        std::any_of(result.algorithms.begin(), result.algorithms.end(), [](const AlgorithmRecord& r) {
+          return !r.intersect && r.termination == Termination::converged;
+        });
     if (disagreement) {
       answer = exact::solve(a.vertices(), b.vertices(), {.depth = true});
       result.exact = exact_record(*answer, band);
@@ -203,16 +207,16 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
 RunReport run_experiment(const ExperimentConfig& config, const RunOptions& options) {
   RunReport report;
   report.output = options.output.value_or(config.output);
-  const std::uint64_t total = options.cases.value_or(config.cases);
+  const std::uint64_t n_values =
+      config.geometry_sweep ? config.geometry_sweep->values.size() : std::uint64_t{1};
+  const std::uint64_t total = options.cases ? *options.cases * n_values : config.total_cases();
   const int threads = std::max(1, options.threads.value_or(config.threads));
   ArchiveWriter writer(report.output, archive_header(config, total), options.force);
 
   std::vector<std::string> names;
   for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.label);
   SummaryBuilder summary(names);
-  std::vector<std::string> family_names;
-  for (const FamilySpec& f : config.families) family_names.push_back(f.name);
-  FamilySummaryBuilder by_family(family_names, names);
+  FamilySummaryBuilder by_family(config.result_family_names(), names);
   Progress progress(options.progress, options.live_progress, total);
   const auto start = Clock::now();
 
@@ -253,7 +257,7 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   writer.finish(utc_now(), true);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.summary = summary.build();
-  if (config.families.size() > 1) report.families = by_family.build();
+  if (config.result_family_names().size() > 1) report.families = by_family.build();
   report.cases = total;
   return report;
 }

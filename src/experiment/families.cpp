@@ -446,10 +446,33 @@ void take_stored_pair(const FamilySpec& family, std::uint64_t case_id, Generated
 
 }  // namespace
 
+namespace {
+
+/// Moves or scales the whole pair by a geometry-sweep value: the same base pair is run once
+/// per value. The offset direction is drawn from the base pair's own generator.
+void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
+                          GeneratedCase& out) {
+  if (sweep.parameter == "offset") {
+    const Vec3 t = value * unit_vector(r);
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud) p += t;
+  } else {
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud) p *= value;
+    out.record.scale *= value;
+  }
+}
+
+}  // namespace
+
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
   if (config.families.empty())
     throw std::invalid_argument("generate_case: the experiment has no families");
-  const RngPtr rng = make_case_rng(config.seed, case_id);
+  // With a geometry sweep, row case_id is base pair case_id / n under value case_id % n.
+  const std::uint64_t n_values = config.geometry_sweep ? config.geometry_sweep->values.size() : 1;
+  const std::uint64_t base_id = case_id / n_values;
+  const std::uint64_t value_index = case_id % n_values;
+  const RngPtr rng = make_case_rng(config.seed, base_id);
   gsl_rng* r = rng.get();
 
   GeneratedCase out;
@@ -463,7 +486,7 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   rec.scale = family.scale;
 
   if (!family.stored.empty()) {
-    take_stored_pair(family, case_id, out);
+    take_stored_pair(family, base_id, out);
   } else if (family.contact != ContactType::none) {
     place_contact_pair(r, family, out);
   } else {
@@ -474,6 +497,12 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
     const Vec3 t = log_uniform(r, family.offset) * unit_vector(r);
     for (auto* cloud : {&out.a, &out.b})
       for (Vec3& p : *cloud) p += t;
+  }
+
+  if (config.geometry_sweep) {
+    apply_geometry_sweep(*config.geometry_sweep, config.geometry_sweep->values[value_index], r,
+                         out);
+    rec.family = static_cast<std::uint32_t>(family_index * n_values + value_index);
   }
 
   rec.vertices_a = static_cast<std::int32_t>(out.a.size());

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -91,6 +92,14 @@ struct AlgorithmSpec {
   AlgorithmOptions options;
 };
 
+/// A sweep of the pair's geometry: every base pair is run once per value, transformed.
+/// offset: both shapes translated by value (length units) along a random unit vector of the
+/// pair; scale: both shapes multiplied by value. Result families are "family offset=value".
+struct GeometrySweep {
+  std::string parameter;  ///< "offset" or "scale"
+  std::vector<double> values;
+};
+
 struct ExperimentConfig {
   std::string source;   ///< the file it was read from (for messages)
   std::string text;     ///< the file's full text (archived as provenance)
@@ -105,7 +114,18 @@ struct ExperimentConfig {
   bool timing = false;
   int repetitions = 5;  ///< timed repetitions per query; the median is recorded
   std::vector<FamilySpec> families;
+  /// After any [sweep] of an algorithm option is expanded: one entry per (algorithm, value),
+  /// labelled "name@key=value".
   std::vector<AlgorithmSpec> algorithms;
+  std::optional<GeometrySweep> geometry_sweep;
+
+  /// Rows of the run: cases × the number of geometry-sweep values.
+  std::uint64_t total_cases() const {
+    return cases * (geometry_sweep ? geometry_sweep->values.size() : 1);
+  }
+  /// Names of the result families (index = CaseRecord::family): the families, or each family
+  /// once per geometry-sweep value.
+  std::vector<std::string> result_family_names() const;
 };
 
 /// Parses an experiment from TOML text; `source` names it in errors. Throws ConfigError.
