@@ -44,6 +44,16 @@ Outcome run_gjk_johnson(const Polytope& a, const Polytope& b, const AlgorithmOpt
   return from_distance(gjk_distance(a, b, o.gjk_distance));
 }
 
+Outcome trace_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
+                       TraceRecorder& trace) {
+  return from_boolean(gjk_intersect(a, b, o.gjk_boolean, trace));
+}
+
+Outcome trace_gjk_johnson(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
+                          TraceRecorder& trace) {
+  return from_distance(gjk_distance(a, b, o.gjk_distance, trace));
+}
+
 Outcome run_libccd_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
   return from_boolean(peers::libccd_gjk_intersect(a, b, o.libccd));
 }
@@ -63,9 +73,11 @@ Outcome run_exact(const Polytope& a, const Polytope& b, const AlgorithmOptions& 
 
 constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
-                  "boolean GJK walking a simplex with triple-product directions", run_gjk_bool},
+                  "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
+                  trace_gjk_bool},
     AlgorithmInfo{"gjk-johnson", AnswerKind::distance,
-                  "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson},
+                  "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson,
+                  trace_gjk_johnson},
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk},
     AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr},
     AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",

@@ -14,6 +14,7 @@
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/trace.hpp"
 #include "gjklab/peers/libccd.hpp"
 
 namespace gjklab::experiment {
@@ -47,6 +48,10 @@ struct AlgorithmInfo {
   AnswerKind kind;
   std::string_view description;
   Outcome (*run)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options);
+  /// The same query with a per-iteration trace (same arithmetic); nullptr when the algorithm
+  /// cannot be traced (peers, the oracle).
+  Outcome (*run_traced)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options,
+                        TraceRecorder& trace) = nullptr;
 };
 
 /// Every registered algorithm, in a fixed order (the default order of outputs).

@@ -1,0 +1,155 @@
+#include "gjklab/replay.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+#include "gjklab/experiment/algorithm_options.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/families.hpp"
+
+namespace gjklab::cli {
+
+namespace {
+
+using experiment::AlgorithmRecord;
+using experiment::CaseResult;
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+std::string vec(const Vec3& v) {
+  return "(" + fmt("%.17g", v.x()) + ", " + fmt("%.17g", v.y()) + ", " + fmt("%.17g", v.z()) + ")";
+}
+
+/// Both clouds of the case: kept in the archive, or regenerated from the archived experiment.
+experiment::CaseGeometry case_geometry(const experiment::Archive& archive, const CaseResult& c,
+                                       const std::string& file) {
+  if (c.geometry) return *c.geometry;
+  const experiment::ExperimentConfig config =
+      experiment::parse_experiment(archive.header.experiment_text, file + " (archived experiment)");
+  experiment::GeneratedCase g = experiment::generate_case(config, c.record.case_id);
+  return {std::move(g.a), std::move(g.b)};
+}
+
+void print_trace(std::ostream& out, const TraceRecorder& trace) {
+  for (const GjkIterationTrace& t : trace.iterations) {
+    out << "    it " << t.iteration << " " << to_string(t.step) << ": |v|^2 "
+        << fmt("%.17g", t.v_norm_squared) << ", v.w " << fmt("%.17g", t.v_dot_w)
+        << ", lower bound " << fmt("%.17g", t.lower_bound) << "\n";
+    out << "      direction " << vec(t.direction) << ", support w " << vec(t.support.w)
+        << " (A[" << t.support.index_a << "] - B[" << t.support.index_b << "])\n";
+    out << "      simplex:";
+    for (int i = 0; i < t.simplex.size(); ++i)
+      out << " A[" << t.simplex[i].index_a << "]-B[" << t.simplex[i].index_b << "]"
+          << (t.simplex[i].index_a < 0 ? " " + vec(t.simplex[i].w) : "") << " λ="
+          << fmt("%.6g", t.weights[i]);
+    out << "\n";
+  }
+}
+
+bool same(double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; }
+
+/// The differences between the rerun and the archived record ("" when equal).
+std::string differences(const experiment::Outcome& now, const AlgorithmRecord& then) {
+  std::string d;
+  const double distance = now.distance.value_or(std::nan(""));
+  if (now.intersect != then.intersect)
+    d += " intersect " + std::to_string(then.intersect) + "→" + std::to_string(now.intersect);
+  if (!same(distance, then.distance))
+    d += " distance " + fmt("%.17g", then.distance) + "→" + fmt("%.17g", distance);
+  if (now.iterations != then.iterations)
+    d += " iterations " + std::to_string(then.iterations) + "→" + std::to_string(now.iterations);
+  if (now.termination != then.termination)
+    d += " termination " + std::string(to_string(then.termination)) + "→" +
+         std::string(to_string(now.termination));
+  return d;
+}
+
+}  // namespace
+
+CLI::App* add_replay_command(CLI::App& app, ReplayArgs& args) {
+  CLI::App* cmd = app.add_subcommand("replay", "rerun an archived case, optionally traced");
+  cmd->add_option("archive", args.archive, "HDF5 archive written by `gjklab run`")->required();
+  cmd->add_option("--case", args.case_id, "case id")->required();
+  cmd->add_option("--algorithm", args.algorithm,
+                  "one result group (e.g. gjk-johnson or gjk-johnson@max_iterations=8)");
+  cmd->add_flag("--trace", args.trace, "print every iteration (GJK algorithms)");
+  return cmd;
+}
+
+int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const experiment::Archive archive = experiment::read_archive(args.archive);
+    const auto& h = archive.header;
+    const CaseResult* found = nullptr;
+    for (const CaseResult& r : archive.results)
+      if (r.record.case_id == args.case_id) found = &r;
+    if (!found) {
+      err << "gjklab replay: " << args.archive << ": no case " << args.case_id << " (the archive has "
+          << archive.results.size() << " cases)\n";
+      return 1;
+    }
+    const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
+    const Polytope a(geometry.a), b(geometry.b);
+    const auto& rec = found->record;
+    out << "case " << rec.case_id << " of " << args.archive << ": family '"
+        << (rec.family < h.family_names.size() ? h.family_names[rec.family] : "?") << "', "
+        << a.size() << " + " << b.size() << " vertices, size " << fmt("%.17g", rec.size) << "\n";
+    if (found->exact)
+      out << "exact: intersect " << found->exact->intersect << ", distance "
+          << fmt("%.17g", found->exact->distance) << ", squared "
+          << found->exact->distance2_num << "/" << found->exact->distance2_den << ", "
+          << to_string(found->exact->contact) << "\n";
+
+    bool all_equal = true, any = false;
+    for (std::size_t k = 0; k < h.algorithm_names.size(); ++k) {
+      const std::string& label = h.algorithm_names[k];
+      const std::string name = label.substr(0, label.find('@'));
+      if (!args.algorithm.empty() && args.algorithm != label && args.algorithm != name) continue;
+      any = true;
+      const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
+      if (!info) {
+        err << "gjklab replay: algorithm '" << name << "' is not in this build of gjklab\n";
+        all_equal = false;
+        continue;
+      }
+      const experiment::AlgorithmSpec spec =
+          experiment::spec_from_description(name, h.algorithm_options[k]);
+      TraceRecorder trace;
+      const bool traced = args.trace && info->run_traced;
+      const experiment::Outcome now = traced ? info->run_traced(a, b, spec.options, trace)
+                                             : info->run(a, b, spec.options);
+      const AlgorithmRecord& then = found->algorithms[k];
+      out << label << ": intersect " << now.intersect;
+      if (now.distance) out << ", distance " << fmt("%.17g", *now.distance);
+      out << ", " << now.iterations << " iterations, " << to_string(now.termination)
+          << ", failure class " << to_string(then.failure) << "\n";
+      if (traced) print_trace(out, trace);
+      if (args.trace && !info->run_traced) out << "    (no trace: " << name << " is not traceable)\n";
+      const std::string d = differences(now, then);
+      out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)
+          << "\n";
+      all_equal = all_equal && d.empty();
+    }
+    if (!any) {
+      err << "gjklab replay: no algorithm '" << args.algorithm << "' in " << args.archive
+          << "; it has:";
+      for (const auto& l : h.algorithm_names) err << " " << l;
+      err << "\n";
+      return 1;
+    }
+    return all_equal ? 0 : 1;
+  } catch (const std::exception& e) {
+    err << "gjklab replay: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace gjklab::cli
