@@ -4,12 +4,15 @@
 
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
+#include "gjklab/gjk/gjk_nesterov.hpp"
+#include "gjklab/gjk/subalgorithms.hpp"
 
 namespace gjklab::experiment {
 
 void AlgorithmOptions::set_max_iterations(int n) {
   gjk_boolean.max_iterations = n;
   gjk_distance.max_iterations = n;
+  gjk_nesterov.max_iterations = n;
   libccd.max_iterations = n;
 }
 
@@ -44,6 +47,22 @@ Outcome run_gjk_johnson(const Polytope& a, const Polytope& b, const AlgorithmOpt
   return from_distance(gjk_distance(a, b, o.gjk_distance));
 }
 
+Outcome run_gjk_johnson_backup(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_distance(gjk_distance_with<JohnsonBackupSubAlgorithm>(a, b, o.gjk_distance));
+}
+
+Outcome run_gjk_sv(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_distance(gjk_distance_with<SignedVolumesSubAlgorithm>(a, b, o.gjk_distance));
+}
+
+Outcome run_gjk_voronoi(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_distance(gjk_distance_with<VoronoiSubAlgorithm>(a, b, o.gjk_distance));
+}
+
+Outcome run_gjk_nesterov(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_distance(gjk_nesterov(a, b, o.gjk_nesterov));
+}
+
 Outcome run_libccd_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
   return from_boolean(peers::libccd_gjk_intersect(a, b, o.libccd));
 }
@@ -68,6 +87,18 @@ constexpr std::array kAlgorithms = {
                   "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson},
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk},
     AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr},
+    AlgorithmInfo{"gjk-johnson-backup", AnswerKind::distance,
+                  "GJK distance with Johnson's sub-algorithm and van den Bergen's backup "
+                  "procedure",
+                  run_gjk_johnson_backup},
+    AlgorithmInfo{"gjk-sv", AnswerKind::distance,
+                  "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)",
+                  run_gjk_sv},
+    AlgorithmInfo{"gjk-voronoi", AnswerKind::distance,
+                  "GJK distance with Voronoi-region tests (Ericson 2005)", run_gjk_voronoi},
+    AlgorithmInfo{"gjk-nesterov", AnswerKind::distance,
+                  "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
+                  run_gjk_nesterov},
     AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",
                   run_exact},
 };

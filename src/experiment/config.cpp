@@ -399,11 +399,39 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement) {
   return f;
 }
 
+/// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
+bool uses_gjk_distance_options(std::string_view algorithm) {
+  return algorithm == "gjk-johnson" || algorithm == "gjk-johnson-backup" ||
+         algorithm == "gjk-sv" || algorithm == "gjk-voronoi";
+}
+
 /// The option keys of each algorithm beyond `name` and `max_iterations`.
 std::vector<std::string_view> own_option_keys(std::string_view algorithm) {
-  if (algorithm == "gjk-johnson") return {"relative_gap", "absolute_gap_squared", "relative_contact"};
+  std::vector<std::string_view> distance_keys = {"convergence", "relative_gap",
+                                                 "absolute_gap_squared", "duality_gap_tolerance",
+                                                 "relative_contact"};
+  if (uses_gjk_distance_options(algorithm)) return distance_keys;
+  if (algorithm == "gjk-nesterov") {
+    distance_keys.push_back("normalize_direction");
+    return distance_keys;
+  }
   if (algorithm == "libccd-gjk" || algorithm == "libccd-mpr") return {"mpr_tolerance"};
   return {};
+}
+
+/// Reads the keys of GjkDistanceOptions (those present) into `o`.
+void read_gjk_distance_options(const Section& s, GjkDistanceOptions& o) {
+  if (const auto name = s.string("convergence")) {
+    const auto c = convergence_from_string(*name);
+    if (!c)
+      s.fail(*s.find("convergence"), "convergence",
+             "unknown criterion '" + *name + "'; valid: relative, absolute, duality_gap");
+    o.convergence = *c;
+  }
+  if (const auto v = s.non_negative("relative_gap")) o.relative_gap = *v;
+  if (const auto v = s.non_negative("absolute_gap_squared")) o.absolute_gap_squared = *v;
+  if (const auto v = s.non_negative("duality_gap_tolerance")) o.duality_gap_tolerance = *v;
+  if (const auto v = s.non_negative("relative_contact")) o.relative_contact = *v;
 }
 
 /// The algorithms an experiment may list: the registry without the exact oracle.
@@ -445,13 +473,16 @@ AlgorithmSpec read_algorithm(const Section& s) {
   if (const auto n = s.integer("max_iterations", 1, std::numeric_limits<int>::max())) {
     const int iterations = static_cast<int>(*n);
     if (spec.name == "gjk-bool") o.gjk_boolean.max_iterations = iterations;
-    else if (spec.name == "gjk-johnson") o.gjk_distance.max_iterations = iterations;
+    else if (uses_gjk_distance_options(spec.name)) o.gjk_distance.max_iterations = iterations;
+    else if (spec.name == "gjk-nesterov") o.gjk_nesterov.max_iterations = iterations;
     else if (spec.name == "libccd-gjk" || spec.name == "libccd-mpr") o.libccd.max_iterations = iterations;
     else o.set_max_iterations(iterations);
   }
-  if (const auto v = s.non_negative("relative_gap")) o.gjk_distance.relative_gap = *v;
-  if (const auto v = s.non_negative("absolute_gap_squared")) o.gjk_distance.absolute_gap_squared = *v;
-  if (const auto v = s.non_negative("relative_contact")) o.gjk_distance.relative_contact = *v;
+  if (uses_gjk_distance_options(spec.name)) read_gjk_distance_options(s, o.gjk_distance);
+  if (spec.name == "gjk-nesterov") {
+    read_gjk_distance_options(s, o.gjk_nesterov);
+    if (const auto v = s.boolean("normalize_direction")) o.gjk_nesterov.normalize_direction = *v;
+  }
   if (const auto v = s.positive("mpr_tolerance")) o.libccd.mpr_tolerance = *v;
   return spec;
 }
@@ -578,11 +609,22 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
   const AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
   if (n == "gjk-bool") return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)}};
-  if (n == "gjk-johnson")
-    return {{"max_iterations", std::to_string(o.gjk_distance.max_iterations)},
-            {"relative_gap", round_trip(o.gjk_distance.relative_gap)},
-            {"absolute_gap_squared", round_trip(o.gjk_distance.absolute_gap_squared)},
-            {"relative_contact", round_trip(o.gjk_distance.relative_contact)}};
+  auto distance_options = [](const GjkDistanceOptions& d) {
+    return std::vector<std::pair<std::string, std::string>>{
+        {"max_iterations", std::to_string(d.max_iterations)},
+        {"convergence", std::string(to_string(d.convergence))},
+        {"relative_gap", round_trip(d.relative_gap)},
+        {"absolute_gap_squared", round_trip(d.absolute_gap_squared)},
+        {"duality_gap_tolerance", round_trip(d.duality_gap_tolerance)},
+        {"relative_contact", round_trip(d.relative_contact)}};
+  };
+  if (uses_gjk_distance_options(n)) return distance_options(o.gjk_distance);
+  if (n == "gjk-nesterov") {
+    auto described = distance_options(o.gjk_nesterov);
+    described.emplace_back("normalize_direction",
+                           o.gjk_nesterov.normalize_direction ? "true" : "false");
+    return described;
+  }
   if (n == "libccd-gjk" || n == "libccd-mpr")
     return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
             {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
