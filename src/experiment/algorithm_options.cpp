@@ -1,5 +1,6 @@
 #include "gjklab/experiment/algorithm_options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -10,8 +11,96 @@ namespace gjklab::experiment {
 
 namespace {
 
-bool is_gjk(std::string_view a) { return a == "gjk-bool" || a == "gjk-johnson"; }
 bool is_libccd(std::string_view a) { return a == "libccd-gjk" || a == "libccd-mpr"; }
+
+/// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
+bool uses_distance_options(std::string_view a) {
+  return a == "gjk-johnson" || a == "gjk-johnson-backup" || a == "gjk-sv" || a == "gjk-voronoi";
+}
+
+std::vector<double> numbers(std::string_view key, std::string_view text) {
+  std::vector<double> out;
+  std::istringstream in{std::string(text)};
+  for (std::string word; in >> word;) {
+    double x = 0;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), x);
+    if (ec != std::errc() || end != word.data() + word.size())
+      throw std::invalid_argument("expected a number, got '" + std::string(text) + "'");
+    out.push_back(x);
+  }
+  if (out.empty()) throw std::invalid_argument(std::string(key) + ": no value");
+  return out;
+}
+
+double number(std::string_view key, std::string_view text) {
+  const auto v = numbers(key, text);
+  if (v.size() != 1) throw std::invalid_argument("expected one number, got '" + std::string(text) + "'");
+  if (!std::isfinite(v[0])) throw std::invalid_argument("must be finite, got " + std::string(text));
+  return v[0];
+}
+
+double non_negative(std::string_view key, std::string_view text) {
+  const double v = number(key, text);
+  if (!(v >= 0)) throw std::invalid_argument("must be >= 0, got " + round_trip(v));
+  return v;
+}
+
+int iterations(std::string_view key, std::string_view text) {
+  const double v = number(key, text);
+  if (!(v >= 1 && v <= std::numeric_limits<int>::max()) || v != std::floor(v))
+    throw std::invalid_argument("must be an integer >= 1, got " + std::string(text));
+  return static_cast<int>(v);
+}
+
+Vec3 direction(std::string_view key, std::string_view text) {
+  const auto v = numbers(key, text);
+  if (v.size() != 3) throw std::invalid_argument("expected [x, y, z], got '" + std::string(text) + "'");
+  const Vec3 d(v[0], v[1], v[2]);
+  if (!d.allFinite() || d.isZero(0)) throw std::invalid_argument("must be finite and non-zero");
+  return d;
+}
+
+bool boolean(std::string_view text) {
+  if (text == "true") return true;
+  if (text == "false") return false;
+  throw std::invalid_argument("expected true or false, got '" + std::string(text) + "'");
+}
+
+std::string text_of(const Vec3& d) {
+  return round_trip(d.x()) + " " + round_trip(d.y()) + " " + round_trip(d.z());
+}
+
+/// Sets a key of GjkDistanceOptions; false if the key is not one of them.
+bool set_distance_option(GjkDistanceOptions& o, std::string_view key, std::string_view text) {
+  if (key == "max_iterations") o.max_iterations = iterations(key, text);
+  else if (key == "relative_gap") o.relative_gap = non_negative(key, text);
+  else if (key == "absolute_gap_squared") o.absolute_gap_squared = non_negative(key, text);
+  else if (key == "duality_gap_tolerance") o.duality_gap_tolerance = non_negative(key, text);
+  else if (key == "relative_contact") o.relative_contact = non_negative(key, text);
+  else if (key == "initial_direction") o.initial_direction = direction(key, text);
+  else if (key == "convergence") {
+    const auto c = convergence_from_string(text);
+    if (!c)
+      throw std::invalid_argument("unknown criterion '" + std::string(text) +
+                                  "'; valid: relative, absolute, duality_gap");
+    o.convergence = *c;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>> describe_distance(const GjkDistanceOptions& d) {
+  return {{"max_iterations", std::to_string(d.max_iterations)},
+          {"convergence", std::string(to_string(d.convergence))},
+          {"relative_gap", round_trip(d.relative_gap)},
+          {"absolute_gap_squared", round_trip(d.absolute_gap_squared)},
+          {"duality_gap_tolerance", round_trip(d.duality_gap_tolerance)},
+          {"relative_contact", round_trip(d.relative_contact)},
+          {"initial_direction", text_of(d.initial_direction)}};
+}
+
+}  // namespace
 
 std::string round_trip(double x) {
   char buffer[64];
@@ -19,74 +108,59 @@ std::string round_trip(double x) {
   return ec == std::errc() ? std::string(buffer, end) : std::to_string(x);
 }
 
-double non_negative(std::string_view key, double v) {
-  if (!(v >= 0) || !std::isfinite(v))
-    throw std::invalid_argument("must be >= 0 and finite, got " + round_trip(v));
-  return v;
-}
-
-}  // namespace
-
 std::vector<std::string_view> option_keys(std::string_view algorithm) {
+  static const std::vector<std::string_view> distance = {
+      "max_iterations",   "convergence",       "relative_gap", "absolute_gap_squared",
+      "duality_gap_tolerance", "relative_contact", "initial_direction"};
   if (algorithm == "gjk-bool") return {"max_iterations", "initial_direction"};
-  if (algorithm == "gjk-johnson")
-    return {"max_iterations", "relative_gap", "absolute_gap_squared", "relative_contact",
-            "initial_direction"};
+  if (uses_distance_options(algorithm)) return distance;
+  if (algorithm == "gjk-nesterov") {
+    auto keys = distance;
+    keys.push_back("normalize_direction");
+    return keys;
+  }
   if (is_libccd(algorithm)) return {"max_iterations", "mpr_tolerance"};
   return {};
 }
 
-int option_arity(std::string_view key) { return key == "initial_direction" ? 3 : 1; }
-
-void set_option(AlgorithmSpec& spec, std::string_view key, std::span<const double> values) {
+void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text) {
   const auto keys = option_keys(spec.name);
   if (std::find(keys.begin(), keys.end(), key) == keys.end())
     throw std::invalid_argument("option '" + std::string(key) + "' does not apply to " + spec.name);
-  if (static_cast<int>(values.size()) != option_arity(key))
-    throw std::invalid_argument("option '" + std::string(key) + "' takes " +
-                                std::to_string(option_arity(key)) + " number(s)");
   AlgorithmOptions& o = spec.options;
-  const double v = values[0];
-  if (key == "max_iterations") {
-    if (!(v >= 1 && v <= std::numeric_limits<int>::max()) || v != std::floor(v))
-      throw std::invalid_argument("max_iterations must be an integer >= 1");
-    const int n = static_cast<int>(v);
-    if (spec.name == "gjk-bool") o.gjk_boolean.max_iterations = n;
-    else if (spec.name == "gjk-johnson") o.gjk_distance.max_iterations = n;
-    else o.libccd.max_iterations = n;
-  } else if (key == "relative_gap") {
-    o.gjk_distance.relative_gap = non_negative(key, v);
-  } else if (key == "absolute_gap_squared") {
-    o.gjk_distance.absolute_gap_squared = non_negative(key, v);
-  } else if (key == "relative_contact") {
-    o.gjk_distance.relative_contact = non_negative(key, v);
-  } else if (key == "mpr_tolerance") {
-    if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("mpr_tolerance must be > 0");
-    o.libccd.mpr_tolerance = v;
-  } else if (key == "initial_direction") {
-    const Vec3 d(values[0], values[1], values[2]);
-    if (!d.allFinite() || d.isZero(0))
-      throw std::invalid_argument("initial_direction must be a finite non-zero vector");
-    o.gjk_boolean.initial_direction = d;
-    o.gjk_distance.initial_direction = d;
+  const std::string& n = spec.name;
+  if (n == "gjk-bool") {
+    if (key == "max_iterations") o.gjk_boolean.max_iterations = iterations(key, text);
+    else o.gjk_boolean.initial_direction = direction(key, text);
+  } else if (uses_distance_options(n)) {
+    set_distance_option(o.gjk_distance, key, text);
+  } else if (n == "gjk-nesterov") {
+    if (key == "normalize_direction") o.gjk_nesterov.normalize_direction = boolean(text);
+    else set_distance_option(o.gjk_nesterov, key, text);
+  } else if (is_libccd(n)) {
+    if (key == "max_iterations") {
+      o.libccd.max_iterations = iterations(key, text);
+    } else {
+      const double v = number(key, text);
+      if (!(v > 0)) throw std::invalid_argument("must be > 0, got " + round_trip(v));
+      o.libccd.mpr_tolerance = v;
+    }
   }
 }
 
 std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec) {
   const AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
-  auto direction = [](const Vec3& d) {
-    return round_trip(d.x()) + " " + round_trip(d.y()) + " " + round_trip(d.z());
-  };
   if (n == "gjk-bool")
     return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)},
-            {"initial_direction", direction(o.gjk_boolean.initial_direction)}};
-  if (n == "gjk-johnson")
-    return {{"max_iterations", std::to_string(o.gjk_distance.max_iterations)},
-            {"relative_gap", round_trip(o.gjk_distance.relative_gap)},
-            {"absolute_gap_squared", round_trip(o.gjk_distance.absolute_gap_squared)},
-            {"relative_contact", round_trip(o.gjk_distance.relative_contact)},
-            {"initial_direction", direction(o.gjk_distance.initial_direction)}};
+            {"initial_direction", text_of(o.gjk_boolean.initial_direction)}};
+  if (uses_distance_options(n)) return describe_distance(o.gjk_distance);
+  if (n == "gjk-nesterov") {
+    auto described = describe_distance(o.gjk_nesterov);
+    described.emplace_back("normalize_direction",
+                           o.gjk_nesterov.normalize_direction ? "true" : "false");
+    return described;
+  }
   if (is_libccd(n))
     return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
             {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
@@ -100,17 +174,11 @@ AlgorithmSpec spec_from_description(const std::string& name,
   spec.name = name;
   spec.label = name;
   for (const auto& [key, value] : text) {
-    std::vector<double> numbers;
-    std::istringstream in(value);
-    for (std::string word; in >> word;) {
-      double x = 0;
-      const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), x);
-      if (ec != std::errc() || end != word.data() + word.size())
-        throw std::invalid_argument("option '" + key + "' of " + name + ": not a number: '" +
-                                    value + "'");
-      numbers.push_back(x);
+    try {
+      set_option(spec, key, value);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("option '" + key + "' of " + name + ": " + e.what());
     }
-    set_option(spec, key, numbers);
   }
   return spec;
 }

@@ -89,14 +89,6 @@ std::string contact_names() {
   return join(names);
 }
 
-/// Shortest decimal text that reads back as the same double.
-std::string round_trip(double x) {
-  char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
-  if (ec != std::errc()) return std::to_string(x);
-  return std::string(buffer, end);
-}
-
 std::string_view type_name(const toml::node& node) {
   switch (node.type()) {
     case toml::node_type::table: return "a table";
@@ -515,15 +507,17 @@ std::vector<std::string_view> own_option_keys(std::string_view algorithm) {
   return keys;
 }
 
-/// Reads one option's number(s) from the TOML node: a number, or [x, y, z] for a direction.
-std::vector<double> option_values(const Section& s, std::string_view key) {
-  const toml::node& node = *s.find(key);
-  if (option_arity(key) == 1) return {s.number_value(node, key)};
-  const toml::array* array = node.as_array();
-  if (!array || array->size() != 3)
-    s.fail(node, key, "expected [x, y, z], got " + std::string(type_name(node)));
-  return {s.number_value(*array->get(0), key), s.number_value(*array->get(1), key),
-          s.number_value(*array->get(2), key)};
+/// The text of one option's TOML value: a number, [x, y, z], a boolean or a string.
+std::string option_text(const Section& s, const toml::node& node, std::string_view key) {
+  if (node.is_string()) return node.as_string()->get();
+  if (node.is_boolean()) return node.as_boolean()->get() ? "true" : "false";
+  if (const toml::array* array = node.as_array()) {
+    std::string text;
+    for (std::size_t i = 0; i < array->size(); ++i)
+      text += (i ? " " : "") + round_trip(s.number_value(*array->get(i), key));
+    return text;
+  }
+  return round_trip(s.number_value(node, key));
 }
 
 /// The algorithms an experiment may list: the registry without the exact oracle.
@@ -565,24 +559,18 @@ AlgorithmSpec read_algorithm(const Section& s) {
   if (const toml::node* n = s.find("max_iterations"))
     s.integer_value(*n, "max_iterations", 1, std::numeric_limits<int>::max());
   for (std::string_view key : option_keys(*name)) {
-    if (!s.find(key)) continue;
+    const toml::node* node = s.find(key);
+    if (!node) continue;
     try {
-      set_option(spec, key, option_values(s, key));
+      set_option(spec, key, option_text(s, *node, key));
     } catch (const std::invalid_argument& e) {
-      s.fail(*s.find(key), key, e.what());
+      s.fail(*node, key, e.what());
     }
   }
   return spec;
 }
 
 constexpr std::string_view kGeometrySweeps[] = {"offset", "scale"};
-
-/// Text of a sweep value in a result label: "8", "1e-06", "0,1,0".
-std::string value_label(const std::vector<double>& v) {
-  std::string out;
-  for (double x : v) out += (out.empty() ? "" : ",") + round_trip(x);
-  return out;
-}
 
 /// [sweep]: parameter = an algorithm option (each value becomes its own algorithm group) or a
 /// geometry parameter (each value its own family group, on the same base pairs).
@@ -596,28 +584,16 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
   if (!values || values->empty())
     s.fail(*values_node, "values", "expected a non-empty array of values");
 
-  std::vector<std::vector<double>> numbers;
-  for (std::size_t i = 0; i < values->size(); ++i) {
-    const toml::node& v = *values->get(i);
-    if (const toml::array* triple = v.as_array()) {
-      std::vector<double> xs;
-      for (std::size_t k = 0; k < triple->size(); ++k)
-        xs.push_back(s.number_value(*triple->get(k), "values"));
-      numbers.push_back(xs);
-    } else {
-      numbers.push_back({s.number_value(v, "values")});
-    }
-  }
-
   if (std::find(std::begin(kGeometrySweeps), std::end(kGeometrySweeps), *parameter) !=
       std::end(kGeometrySweeps)) {
     GeometrySweep sweep{*parameter, {}};
-    for (const auto& v : numbers) {
-      const bool ok = v.size() == 1 && (*parameter == "offset" ? v[0] >= 0 : v[0] > 0);
-      if (!ok)
-        s.fail(*values_node, "values",
+    for (std::size_t i = 0; i < values->size(); ++i) {
+      const toml::node& v = *values->get(i);
+      const double x = v.is_number() ? s.number_value(v, "values") : -1;
+      if (!(*parameter == "offset" ? x >= 0 : x > 0))
+        s.fail(v, "values",
                *parameter == "offset" ? "offsets must be numbers >= 0" : "scales must be numbers > 0");
-      sweep.values.push_back(v[0]);
+      sweep.values.push_back(x);
     }
     config.geometry_sweep = std::move(sweep);
     return;
@@ -636,14 +612,17 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
       continue;
     }
     taken = true;
-    for (const auto& v : numbers) {
+    for (std::size_t i = 0; i < values->size(); ++i) {
+      const std::string text = option_text(s, *values->get(i), "values");
       AlgorithmSpec copy = spec;
       try {
-        set_option(copy, *parameter, v);
+        set_option(copy, *parameter, text);
       } catch (const std::invalid_argument& e) {
-        s.fail(*values_node, "values", e.what());
+        s.fail(*values->get(i), "values", e.what());
       }
-      copy.label = spec.name + "@" + *parameter + "=" + value_label(v);
+      std::string shown = text;
+      std::replace(shown.begin(), shown.end(), ' ', ',');
+      copy.label = spec.name + "@" + *parameter + "=" + shown;
       expanded.push_back(std::move(copy));
     }
   }

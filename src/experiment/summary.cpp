@@ -78,14 +78,18 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   }
   out << "\n\n";
   char line[256];
-  std::snprintf(line, sizeof line, "%-14s %8s %8s %10s %10s %10s %8s %6s %10s\n", "algorithm",
-                "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean", "it_max",
-                "ns/query");
+  // The name column fits the longest algorithm name (at least 14 characters).
+  int width = 14;
+  for (const AlgorithmSummary& a : s.algorithms)
+    width = std::max(width, static_cast<int>(std::min<std::size_t>(a.name.size(), 64)));
+  std::snprintf(line, sizeof line, "%-*s %8s %8s %10s %10s %10s %8s %6s %10s\n", width,
+                "algorithm", "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean",
+                "it_max", "ns/query");
   out << line;
   for (const AlgorithmSummary& a : s.algorithms) {
     const bool has_distance = a.distances > 0;
-    std::snprintf(line, sizeof line, "%-14s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n",
-                  a.name.c_str(), static_cast<unsigned long long>(a.cases),
+    std::snprintf(line, sizeof line, "%-*s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n",
+                  width, a.name.c_str(), static_cast<unsigned long long>(a.cases),
                   static_cast<unsigned long long>(a.wrong_booleans),
                   has_distance ? format("%.2e", a.rel_error_median).c_str() : "-",
                   has_distance ? format("%.2e", a.rel_error_p99).c_str() : "-",

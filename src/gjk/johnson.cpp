@@ -54,22 +54,63 @@ bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int
   return true;
 }
 
+namespace {
+
+/// The solution for subset X: λ_i = Δ_i(X)/Δ(X) and v = Σ λ_i y_i.
+JohnsonSolution solution_of(const JohnsonCofactors& c, const std::array<Vec3, 4>& y, int count,
+                            std::uint8_t x) {
+  JohnsonSolution s;
+  s.found = true;
+  s.subset = x;
+  for (int i = 0; i < count; ++i) {
+    if (!(x & (1u << i))) continue;
+    s.weights[i] = c.delta[x][i] / c.total[x];
+    s.closest += s.weights[i] * y[i];
+  }
+  return s;
+}
+
+}  // namespace
+
+bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8_t subset,
+                                           int count) {
+  if (!(c.total[subset] > 0)) return false;
+  for (int i = 0; i < count; ++i)
+    if ((subset & (1u << i)) && !(c.delta[subset][i] > 0)) return false;
+  return true;
+}
+
 JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
   const JohnsonCofactors c = johnson_cofactors(y, count);
   const std::uint8_t all = static_cast<std::uint8_t>((1u << count) - 1);
-  JohnsonSolution s;
   for (std::uint8_t x : kSubsetsBySize) {
     if ((x & all) != x || !johnson_subset_is_valid(c, x, count)) continue;
-    s.found = true;
-    s.subset = x;
-    for (int i = 0; i < count; ++i) {
-      if (!(x & (1u << i))) continue;
-      s.weights[i] = c.delta[x][i] / c.total[x];
-      s.closest += s.weights[i] * y[i];
-    }
-    return s;
+    return solution_of(c, y, count, x);
   }
-  return s;
+  return {};
+}
+
+JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, int count,
+                                                  bool* used_backup) {
+  const JohnsonCofactors c = johnson_cofactors(y, count);
+  const std::uint8_t all = static_cast<std::uint8_t>((1u << count) - 1);
+  if (used_backup) *used_backup = false;
+  for (std::uint8_t x : kSubsetsBySize) {
+    if ((x & all) != x || !johnson_subset_is_valid(c, x, count)) continue;
+    return solution_of(c, y, count, x);
+  }
+  // Backup procedure: every subset whose affine closest point lies inside its hull by the
+  // cofactors' signs is a candidate; the one whose point is nearest the origin wins.
+  if (used_backup) *used_backup = true;
+  JohnsonSolution best;
+  double best_norm = 0;
+  for (std::uint8_t x : kSubsetsBySize) {
+    if ((x & all) != x || !johnson_subset_has_positive_cofactors(c, x, count)) continue;
+    const JohnsonSolution candidate = solution_of(c, y, count, x);
+    const double norm = candidate.closest.squaredNorm();
+    if (!best.found || norm < best_norm) best = candidate, best_norm = norm;
+  }
+  return best;
 }
 
 }  // namespace gjklab

@@ -430,11 +430,13 @@ mpr_tolerance = 3.3e-7
                                                             {"initial_direction", "1 0 0"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
-  CHECK(johnson.size() == 5);
+  CHECK(johnson.size() == 7);
   CHECK(johnson.at("max_iterations") == std::to_string(GjkDistanceDefaults::max_iterations));
+  CHECK(johnson.at("convergence") == "relative");
   CHECK(std::stod(johnson.at("relative_gap")) == 0.1);
   CHECK(std::stod(johnson.at("relative_contact")) == GjkDistanceDefaults::relative_contact);
   CHECK(std::stod(johnson.at("absolute_gap_squared")) == 0.0);
+  CHECK(std::stod(johnson.at("duality_gap_tolerance")) == 0.0);
 
   const auto ccd = as_map(describe_options(c.algorithms[2]));
   CHECK(ccd.size() == 2);
@@ -447,4 +449,53 @@ mpr_tolerance = 3.3e-7
     CHECK(describe_options(back) == describe_options(spec));
   }
   CHECK(ccd.count("relative_gap") == 0);
+}
+
+TEST_CASE("GJK distance variants: options, convergence criteria and their errors",
+          "[unit][config]") {
+  const ExperimentConfig c = parse(kHead + kFamily + R"(
+[[algorithm]]
+name = "gjk-sv"
+convergence = "duality_gap"
+duality_gap_tolerance = 1e-20
+max_iterations = 40
+[[algorithm]]
+name = "gjk-nesterov"
+convergence = "absolute"
+absolute_gap_squared = 1e-18
+normalize_direction = true
+[[algorithm]]
+name = "gjk-voronoi"
+[[algorithm]]
+name = "gjk-johnson-backup"
+relative_gap = 1e-9
+)");
+  REQUIRE(c.algorithms.size() == 4);
+  const GjkDistanceOptions& sv = c.algorithms[0].options.gjk_distance;
+  CHECK(sv.convergence == GjkConvergence::duality_gap);
+  CHECK(sv.duality_gap_tolerance == 1e-20);
+  CHECK(sv.max_iterations == 40);
+  const GjkNesterovOptions& nesterov = c.algorithms[1].options.gjk_nesterov;
+  CHECK(nesterov.convergence == GjkConvergence::absolute);
+  CHECK(nesterov.absolute_gap_squared == 1e-18);
+  CHECK(nesterov.normalize_direction);
+  CHECK(nesterov.max_iterations == GjkDistanceDefaults::max_iterations);
+  CHECK(c.algorithms[2].options.gjk_distance.convergence == GjkConvergence::relative);
+  CHECK(c.algorithms[3].options.gjk_distance.relative_gap == 1e-9);
+
+  const auto described = as_map(describe_options(c.algorithms[1]));
+  CHECK(described.at("convergence") == "absolute");
+  CHECK(described.at("normalize_direction") == "true");
+  CHECK(std::stod(described.at("absolute_gap_squared")) == 1e-18);
+  CHECK(as_map(describe_options(c.algorithms[0])).at("convergence") == "duality_gap");
+
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-sv\"\nconvergence = \"hybrid\"\n"),
+      Contains("exp.toml:10:") && Contains("key 'algorithm[0].convergence'") &&
+          Contains("unknown criterion 'hybrid'; valid: relative, absolute, duality_gap"));
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily +
+            "\n[[algorithm]]\nname = \"gjk-voronoi\"\nnormalize_direction = false\n"),
+      Contains("exp.toml:10:") && Contains("key 'algorithm[0].normalize_direction'") &&
+          Contains("applies to gjk-nesterov, not to gjk-voronoi"));
 }

@@ -22,7 +22,8 @@ namespace gjklab::experiment {
 /// Options of every algorithm, one struct each; an experiment records all of them.
 struct AlgorithmOptions {
   GjkBooleanOptions gjk_boolean;
-  GjkDistanceOptions gjk_distance;
+  GjkDistanceOptions gjk_distance;  ///< gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi
+  GjkNesterovOptions gjk_nesterov;  ///< gjk-nesterov
   peers::LibccdOptions libccd;
   exact::OracleOptions oracle;
 

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <concepts>
+#include <span>
+#include <utility>
 
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/johnson.hpp"
@@ -87,20 +89,71 @@ SimplexVertex minkowski_support(const A& a, const B& b, const Vec3& d) {
 /// u = 2^-53, rounded up: about 4.5u.
 inline constexpr double kDotRoundoff = 1e-15;
 
-/// Distance between two convex shapes given by support maps (both in the same frame), with
-/// sub-algorithm Sub and an observer that receives a trace of every iteration when enabled.
-/// The result's termination says why the loop stopped; on any stop other than `converged` the
-/// answer is the best upper bound found so far (‖v‖ and its witnesses).
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOptions& options,
-                                 Observer&& observer = {}) {
+/// The stopping test of options.convergence for ‖v‖² = vv and v·w = vw (see GjkConvergence).
+inline bool gap_converged(const GjkDistanceOptions& options, double vv, double vw) {
+  // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist, on squared lengths.
+  const double gap = vv - vw;
+  switch (options.convergence) {
+    case GjkConvergence::relative:
+      return gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared;
+    case GjkConvergence::absolute: return gap <= options.absolute_gap_squared;
+    case GjkConvergence::duality_gap: return 2 * gap <= options.duality_gap_tolerance;
+  }
+  return false;
+}
+
+namespace detail {
+
+/// The starting simplex of a distance query and its closest point. Cold start (`warm` empty):
+/// the support point of A − B in options.initial_direction (one support call). Warm start:
+/// the given points, each re-evaluated on the current shapes from its vertex indices when the
+/// shape reports them (so a previous query's final simplex stays valid after the shapes
+/// moved); points without indices are taken as given and must be points of the current A and
+/// B. Repeated and non-finite points are skipped, and the rest is reduced by the sub-algorithm;
+/// when nothing usable remains or the reduction fails, the query starts cold.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B>
+void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
+                   std::span<const SimplexVertex> warm, Simplex& simplex,
+                   ClosestOnSimplex& best, int& support_calls) {
+  simplex.clear();
+  for (const SimplexVertex& given : warm) {
+    if (simplex.full()) break;
+    SimplexVertex v = given;
+    if constexpr (requires { a.vertices(); }) {
+      if (v.index_a >= 0 && static_cast<std::size_t>(v.index_a) < a.vertices().size())
+        v.a = a.vertices()[v.index_a];
+    }
+    if constexpr (requires { b.vertices(); }) {
+      if (v.index_b >= 0 && static_cast<std::size_t>(v.index_b) < b.vertices().size())
+        v.b = b.vertices()[v.index_b];
+    }
+    v.w = v.a - v.b;
+    if (v.w.allFinite() && !simplex.contains(v.w)) simplex.push(v);
+  }
+  if (!simplex.empty()) {
+    Simplex reduced = simplex;
+    if (sub.reduce(reduced, best) && best.v.allFinite()) {
+      simplex = reduced;
+      return;
+    }
+  }
+  const SimplexVertex first = minkowski_support(a, b, options.initial_direction);
+  support_calls = 1;
+  simplex.clear();
+  simplex.push(first);
+  best = {first.w, first.a, first.b, {1, 0, 0, 0}};
+}
+
+/// The GJK distance loop shared by the cold and warm-started queries.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
+DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
+                                std::span<const SimplexVertex> warm, Observer&& observer) {
   const Sub sub{};
   DistanceResult out;
-  const SimplexVertex first = detail::minkowski_support(a, b, options.initial_direction);
-  out.support_calls = 1;
   Simplex simplex;
-  simplex.push(first);
-  ClosestOnSimplex best{first.w, first.a, first.b, {1, 0, 0, 0}};
+  ClosestOnSimplex best;
+  start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
+  const SimplexVertex& first = simplex[0];
   double lower_bound = 0;
 
   // Reports the iteration to the observer (when enabled) and ends the query if t says so.
@@ -139,7 +192,8 @@ DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOption
   };
 
   if (!first.w.allFinite()) return finish(Termination::numerical_failure, false);
-  if (in_contact(best.v, simplex)) return finish(Termination::converged, true);
+  // A warm start may begin with a tetrahedron that encloses the origin.
+  if (simplex.full() || in_contact(best.v, simplex)) return finish(Termination::converged, true);
 
   // Set once some support point satisfies v·w > 0: then the plane v·x = v·w separates the
   // origin from A − B, a certificate that the shapes do not intersect. A sub-algorithm that
@@ -158,10 +212,7 @@ DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOption
     const double vw = v.dot(next.w);
     if (vw > 0) lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
 
-    // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist: relative test (van den Bergen) and an
-    // optional absolute floor, both on squared lengths.
-    const double gap = vv - vw;
-    if (gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared) {
+    if (gap_converged(options, vv, vw)) {
       trace(-v, next, vv, vw, GjkStep::gap_converged);
       return finish(Termination::converged, false);
     }
@@ -207,6 +258,31 @@ DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOption
   }
   out.iterations = options.max_iterations;
   return finish(Termination::step_limit, false);
+}
+
+}  // namespace detail
+
+/// Distance between two convex shapes given by support maps (both in the same frame), with
+/// sub-algorithm Sub and an observer that receives a trace of every iteration when enabled.
+/// The result's termination says why the loop stopped; on any stop other than `converged` the
+/// answer is the best upper bound found so far (‖v‖ and its witnesses).
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
+DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOptions& options,
+                                 Observer&& observer = {}) {
+  return detail::gjk_distance_run<Sub>(a, b, options, {}, std::forward<Observer>(observer));
+}
+
+/// The same query warm-started from a simplex, typically the previous query's final simplex
+/// (`result.simplex.vertices()`) in a sequence of queries on a moving pair. Polytopes report
+/// vertex indices, so each point is re-evaluated on the current shapes (see
+/// detail::start_simplex); a usable start costs no support call. Same answer and termination
+/// vocabulary as the cold query, usually in fewer iterations when the pair moved little.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
+DistanceResult gjk_distance_warm_with(const A& a, const B& b,
+                                      std::span<const SimplexVertex> start,
+                                      const GjkDistanceOptions& options,
+                                      Observer&& observer = {}) {
+  return detail::gjk_distance_run<Sub>(a, b, options, start, std::forward<Observer>(observer));
 }
 
 /// `gjk-johnson`: GJK distance with Johnson's sub-algorithm.

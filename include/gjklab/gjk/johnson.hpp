@@ -38,8 +38,24 @@ JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count);
 /// True if subset X passes Johnson's two tests for the simplex of `count` points.
 bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count);
 
+/// True if every cofactor of subset X is positive: Δ(X) > 0 and Δ_i(X) > 0 for i ∈ X, i.e.
+/// the point of aff(X) closest to the origin lies in the relative interior of conv(X).
+bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8_t subset,
+                                           int count);
+
 /// Johnson's sub-algorithm: tests the subsets in order of increasing size (then increasing
 /// mask) and returns the first that passes, with its weights and closest point.
 JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count);
+
+/// Johnson's sub-algorithm with the backup procedure of van den Bergen ("A fast and robust
+/// GJK implementation for collision detection of convex objects", J. Graphics Tools 4(2),
+/// 1999, after Gilbert, Johnson and Keerthi 1988): when no subset passes Johnson's two tests,
+/// search all subsets X with positive cofactors (johnson_subset_has_positive_cofactors; the
+/// singletons always qualify, Δ({y_i}) = 1) and return the one whose affine closest point
+/// v(X) = Σ_{i∈X} (Δ_i(X)/Δ(X)) y_i has the smallest ‖v(X)‖², the first in Johnson's order
+/// (size, then mask) on ties. Always found for finite points. `used_backup` (optional) tells
+/// whether the backup decided.
+JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, int count,
+                                                  bool* used_backup = nullptr);
 
 }  // namespace gjklab

@@ -5,6 +5,10 @@
 // scale by exactly 2^k where no overflow or underflow occurs.
 #pragma once
 
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab {
@@ -21,31 +25,95 @@ struct GjkBooleanOptions {
   Vec3 initial_direction = Vec3(1, 0, 0);
 };
 
+/// The stopping test of the distance queries, evaluated on the gap ‖v‖² − v·w between the
+/// upper bound ‖v‖² and v·w, where v is the current closest point of the simplex and w the
+/// support point of A − B in direction −v (the minimiser of v·x over A − B).
+///
+/// Every criterion bounds the error of v: with v* the exact closest point of A − B and d = ‖v*‖,
+/// the Frank–Wolfe inequality ‖v − v*‖² ≤ ‖v‖² − d² ≤ 2(‖v‖² − v·w) holds, and the plane
+/// v·x = v·w separates the origin from A − B, so d ≥ v·w/‖v‖.
+enum class GjkConvergence : std::uint8_t {
+  /// van den Bergen's test (the default): ‖v‖² − v·w ≤ relative_gap · ‖v‖², or
+  /// ≤ absolute_gap_squared. Scale-free; bounds the relative distance error:
+  /// (‖v‖ − d)/‖v‖ ≤ relative_gap.
+  relative,
+  /// ‖v‖² − v·w ≤ absolute_gap_squared (squared length units). Bounds the absolute error:
+  /// ‖v − v*‖² ≤ 2 · absolute_gap_squared. Not scale-free.
+  absolute,
+  /// The Frank–Wolfe duality gap of min ‖x‖² over A − B at x = v, g = 2(‖v‖² − v·w) (the
+  /// gradient 2v dotted with v − w), with g ≤ duality_gap_tolerance (squared length units).
+  /// Bounds ‖v − v*‖² ≤ g and ‖v‖² − d² ≤ g (Montaut et al. 2022). Not scale-free.
+  duality_gap,
+};
+
+constexpr std::string_view to_string(GjkConvergence c) {
+  switch (c) {
+    case GjkConvergence::relative: return "relative";
+    case GjkConvergence::absolute: return "absolute";
+    case GjkConvergence::duality_gap: return "duality_gap";
+  }
+  return "unknown";
+}
+
+inline std::optional<GjkConvergence> convergence_from_string(std::string_view name) {
+  for (GjkConvergence c :
+       {GjkConvergence::relative, GjkConvergence::absolute, GjkConvergence::duality_gap})
+    if (to_string(c) == name) return c;
+  return std::nullopt;
+}
+
 struct GjkDistanceDefaults {
   static constexpr int max_iterations = 128;
+  static constexpr GjkConvergence convergence = GjkConvergence::relative;
   static constexpr double relative_gap = 1e-12;
   static constexpr double absolute_gap_squared = 0.0;
+  static constexpr double duality_gap_tolerance = 0.0;
   static constexpr double relative_contact = 1e-13;
 };
 
-/// Options of `gjk-johnson` (and later distance variants).
+/// Options of the GJK distance queries: `gjk-johnson`, `gjk-johnson-backup`, `gjk-sv`,
+/// `gjk-voronoi` (and, through GjkNesterovOptions, `gjk-nesterov`).
 struct GjkDistanceOptions {
   /// Upper bound on main-loop iterations (each costs one support call per shape).
   int max_iterations = GjkDistanceDefaults::max_iterations;
-  /// Relative, on squared lengths (dimensionless): converged when
+  /// Which stopping test applies (see GjkConvergence); only that criterion's tolerances are read.
+  GjkConvergence convergence = GjkDistanceDefaults::convergence;
+  /// `relative` criterion; relative, on squared lengths (dimensionless): converged when
   /// ‖v‖² − v·w ≤ relative_gap · ‖v‖², i.e. the lower bound v·w/‖v‖ is within a factor
   /// (1 − relative_gap) of the upper bound ‖v‖ (van den Bergen's test).
   double relative_gap = GjkDistanceDefaults::relative_gap;
-  /// Absolute, squared length units: also converged when ‖v‖² − v·w ≤ absolute_gap_squared.
-  /// The default 0 disables this floor, which keeps the query scale-invariant.
+  /// `relative` and `absolute` criteria; absolute, squared length units: converged when
+  /// ‖v‖² − v·w ≤ absolute_gap_squared (for `relative`, a floor in addition to the relative
+  /// test). The default 0 disables the floor, which keeps the query scale-invariant; with
+  /// `absolute` and 0 the query stops only on a gap ≤ 0, a repeated support point or no progress.
   double absolute_gap_squared = GjkDistanceDefaults::absolute_gap_squared;
+  /// `duality_gap` criterion; absolute, squared length units: converged when the Frank–Wolfe
+  /// duality gap 2(‖v‖² − v·w) ≤ duality_gap_tolerance. With 0 (the default) the query stops
+  /// only on a gap ≤ 0, a repeated support point or no progress.
+  double duality_gap_tolerance = GjkDistanceDefaults::duality_gap_tolerance;
   /// Relative to the simplex size, not squared: the shapes are declared in contact when
   /// ‖v‖ ≤ relative_contact · max_i ‖y_i‖ over the simplex vertices y_i, i.e. when v is
   /// indistinguishable from the rounding noise of the points that produced it.
   double relative_contact = GjkDistanceDefaults::relative_contact;
   /// First search direction (any length). A fixed default keeps the query scale-invariant;
-  /// pass the previous query's direction to warm-start a sequence of queries.
+  /// pass the previous query's direction to warm-start a sequence of queries (or start from
+  /// the previous query's final simplex with gjk_distance_warm_with).
   Vec3 initial_direction = Vec3(1, 0, 0);
+};
+
+struct GjkNesterovDefaults {
+  static constexpr bool normalize_direction = false;
+};
+
+/// Options of `gjk-nesterov`: those of the distance queries (the stopping criterion, contact
+/// test and iteration bound mean the same) and the momentum variant.
+struct GjkNesterovOptions : GjkDistanceOptions {
+  /// false (the default): the paper's schedule, δ_k = (k+1)/(k+3) and
+  /// d_k = δ_k d_{k−1} + (1−δ_k) y_k. true: the normalised heuristic that coal applies to
+  /// shapes that are not strictly convex, δ_k = (k+2)/(k+3) and
+  /// d_k = δ_k d_{k−1}/‖d_{k−1}‖ + (1−δ_k) y_k/‖y_k‖ (on this testbed's point clouds it costs
+  /// more iterations than the paper's schedule; see gjk_nesterov.hpp).
+  bool normalize_direction = GjkNesterovDefaults::normalize_direction;
 };
 
 }  // namespace gjklab

@@ -2,8 +2,10 @@
 // the support points of A and B that produced it (for witness points and traces).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "gjklab/geometry/types.hpp"
 
@@ -26,6 +28,10 @@ class Simplex {
   bool empty() const { return size_ == 0; }
   bool full() const { return size_ == kCapacity; }
   const SimplexVertex& operator[](int i) const { return vertices_[i]; }
+  /// The points in order (oldest first): e.g. the start of a warm-started query.
+  std::span<const SimplexVertex> vertices() const {
+    return {vertices_.data(), static_cast<std::size_t>(size_)};
+  }
 
   void push(const SimplexVertex& v) { vertices_[size_++] = v; }
   void clear() { size_ = 0; }

@@ -25,6 +25,7 @@ enum class GjkStep : std::uint8_t {
   no_progress,       ///< ‖v‖ did not decrease
   non_finite,        ///< a NaN or infinity appeared
   step_limit,        ///< the iteration bound was reached
+  momentum_restart,  ///< (Nesterov GJK) the momentum step failed; plain GJK directions from now on
 };
 
 constexpr std::string_view to_string(GjkStep s) {
@@ -38,6 +39,7 @@ constexpr std::string_view to_string(GjkStep s) {
     case GjkStep::no_progress: return "no_progress";
     case GjkStep::non_finite: return "non_finite";
     case GjkStep::step_limit: return "step_limit";
+    case GjkStep::momentum_restart: return "momentum_restart";
   }
   return "unknown";
 }
@@ -45,7 +47,7 @@ constexpr std::string_view to_string(GjkStep s) {
 /// One iteration of a GJK query.
 struct GjkIterationTrace {
   int iteration = 0;
-  Vec3 direction = Vec3::Zero();   ///< search direction (−v for the distance query)
+  Vec3 direction = Vec3::Zero();   ///< search direction (−v for the distance query; −d_k for Nesterov)
   SimplexVertex support;           ///< the support point w = a − b taken in this iteration
   double v_norm_squared = 0;       ///< ‖v‖² before the step (distance query)
   double v_dot_w = 0;              ///< v·w (distance query)

@@ -1,0 +1,82 @@
+// The distance sub-algorithms as interchangeable policies of the one GJK distance driver
+// (gjk_distance_with<Sub>), and the queries that use them:
+//
+//   gjk-johnson          JohnsonSubAlgorithm          (gjk_distance.hpp; johnson.hpp)
+//   gjk-johnson-backup   JohnsonBackupSubAlgorithm    (johnson.hpp: van den Bergen's backup)
+//   gjk-sv               SignedVolumesSubAlgorithm    (signed_volumes.hpp: Montanari et al.)
+//   gjk-voronoi          VoronoiSubAlgorithm          (voronoi.hpp: Ericson's region tests)
+//
+// Each policy reduces the simplex to the sub-simplex holding its point closest to the origin,
+// keeping the points in order, and fills v, the witnesses and the barycentric weights of the
+// kept points in that order.
+#pragma once
+
+#include <array>
+
+#include "gjklab/gjk/gjk_distance.hpp"
+#include "gjklab/gjk/johnson.hpp"
+#include "gjklab/gjk/signed_volumes.hpp"
+#include "gjklab/gjk/voronoi.hpp"
+
+namespace gjklab {
+
+namespace detail {
+
+/// Applies a sub-algorithm's answer (subset, weights by original index, closest point) to the
+/// simplex and the closest-point record. False, leaving both untouched, if nothing was found.
+template <class Solution>
+bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
+  if (!s.found) return false;
+  out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
+  int kept = 0;
+  for (int i = 0; i < simplex.size(); ++i) {
+    if (!(s.subset & (1u << i))) continue;
+    out.witness_a += s.weights[i] * simplex[i].a;
+    out.witness_b += s.weights[i] * simplex[i].b;
+    out.weights[kept++] = s.weights[i];
+  }
+  simplex.keep(s.subset);
+  return true;
+}
+
+inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
+  std::array<Vec3, 4> y;
+  for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
+  return y;
+}
+
+}  // namespace detail
+
+/// Johnson's sub-algorithm with van den Bergen's backup procedure (see
+/// johnson_closest_point_with_backup): never undecided for finite points.
+struct JohnsonBackupSubAlgorithm {
+  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+    return detail::keep_solution(
+        johnson_closest_point_with_backup(detail::simplex_points(simplex), simplex.size()),
+        simplex, out);
+  }
+};
+
+/// The signed-volumes sub-algorithm of Montanari, Petrinic and Barbieri (2017).
+struct SignedVolumesSubAlgorithm {
+  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+    return detail::keep_solution(
+        signed_volumes_closest_point(detail::simplex_points(simplex), simplex.size()), simplex,
+        out);
+  }
+};
+
+/// The Voronoi-region case analysis (Ericson, Real-Time Collision Detection, ch. 5).
+struct VoronoiSubAlgorithm {
+  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+    return detail::keep_solution(
+        voronoi_closest_point(detail::simplex_points(simplex), simplex.size()), simplex, out);
+  }
+};
+
+static_assert(SubAlgorithm<JohnsonSubAlgorithm>);
+static_assert(SubAlgorithm<JohnsonBackupSubAlgorithm>);
+static_assert(SubAlgorithm<SignedVolumesSubAlgorithm>);
+static_assert(SubAlgorithm<VoronoiSubAlgorithm>);
+
+}  // namespace gjklab

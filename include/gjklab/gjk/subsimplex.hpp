@@ -1,0 +1,20 @@
+// The answer of a distance sub-algorithm on one simplex, shared by the sub-algorithms that
+// are not Johnson's (signed volumes, Voronoi regions).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab {
+
+/// The sub-simplex whose convex hull holds the point of a simplex closest to the origin.
+struct SubsimplexSolution {
+  bool found = false;               ///< false when the sub-algorithm could not decide
+  std::uint8_t subset = 0;          ///< bitmask of the kept points (bit i ↔ y_i)
+  std::array<double, 4> weights{};  ///< barycentric weights λ_i of the kept points; 0 outside
+  Vec3 closest = Vec3::Zero();      ///< v = Σ λ_i y_i
+};
+
+}  // namespace gjklab

@@ -1,0 +1,33 @@
+// The GJK distance variants on the configurations that broke gjk-johnson.
+#include <catch2/catch.hpp>
+
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
+
+using namespace gjklab;
+
+TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 points)",
+          "[regression]") {
+  // See test_johnson_regressions.cpp: a support point coplanar with the closest triangle
+  // makes a flat tetrahedron whose rounded cofactors all look positive. No variant may claim
+  // contact after a separation certificate, and all must return the distance.
+  const auto cases = experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) +
+                                                 "/johnson_flat_tetrahedron_near_contact.jsonl");
+  REQUIRE(cases.size() == 1);
+  const auto& c = std::get<experiment::PointCase>(cases[0]);
+  const Polytope a(c.a), b(c.b);
+  const auto exact = exact::solve(a.vertices(), b.vertices());
+  REQUIRE_FALSE(exact.intersect);
+  int variants = 0;
+  for (const char* name :
+       {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi", "gjk-nesterov"}) {
+    INFO(name);
+    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    CHECK_FALSE(o.intersect);
+    REQUIRE(o.distance.has_value());
+    CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
+    ++variants;
+  }
+  CHECK(variants == 5);
+}
