@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <ostream>
@@ -13,6 +15,18 @@
 #include "gjklab/experiment/summary.hpp"
 
 namespace gjklab::cli {
+
+namespace {
+
+/// Set by the first SIGINT; a second one gets the default action (terminate).
+std::atomic<bool> interrupted{false};
+
+extern "C" void on_sigint(int) {
+  interrupted = true;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+}  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunArgs& args) {
   CLI::App* cmd = app.add_subcommand("run", "run an experiment file and write its HDF5 archive");
@@ -42,7 +56,16 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
     options.force = args.force;
     options.progress = &err;
     options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);
+    interrupted = false;
+    options.stop = &interrupted;
+    const auto previous = std::signal(SIGINT, on_sigint);
     const experiment::RunReport report = experiment::run_experiment(config, options);
+    std::signal(SIGINT, previous);
+    if (!report.complete) {
+      err << "gjklab run: interrupted: " << report.cases << " finished cases written to "
+          << report.output.string() << " (marked incomplete)\n";
+      return 130;
+    }
     out << "experiment '" << config.name << "': " << report.cases << " cases in "
         << report.seconds << " s (" << static_cast<double>(report.cases) / report.seconds
         << " cases/s), archive " << report.output.string() << "\n\n";

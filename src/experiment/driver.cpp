@@ -227,8 +227,13 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
     std::atomic<std::uint64_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
+    auto stopping = [&] { return options.stop && options.stop->load(); };
     auto worker = [&] {
-      for (std::uint64_t i = next++; i < count; i = next++) {
+      // The stop flag is read before an index is taken, so every taken case is finished and
+      // the finished cases of the batch are exactly its first min(next, count).
+      while (!stopping()) {
+        const std::uint64_t i = next++;
+        if (i >= count) break;
         try {
           batch[i] = evaluate_case(config, first + i);
         } catch (const std::exception& e) {
@@ -246,6 +251,23 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
     pool.clear();  // joins
     // The archive keeps its temporary name: nothing that looks complete is left behind.
     if (failure) std::rethrow_exception(failure);
+    if (stopping()) {
+      batch.resize(std::min<std::uint64_t>(next.load(), count));
+      writer.append(batch);
+      for (const CaseResult& r : batch) {
+        summary.add(r);
+        by_family.add(r);
+      }
+      report.cases = first + batch.size();
+      report.complete = false;
+      progress.update(report.cases, true);
+      writer.finish(utc_now(), false);
+      report.output = writer.temporary_path();
+      report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      report.summary = summary.build();
+      if (config.result_family_names().size() > 1) report.families = by_family.build();
+      return report;
+    }
     writer.append(batch);
     for (const CaseResult& r : batch) {
       summary.add(r);
@@ -259,6 +281,7 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   report.summary = summary.build();
   if (config.result_family_names().size() > 1) report.families = by_family.build();
   report.cases = total;
+  report.complete = true;
   return report;
 }
 

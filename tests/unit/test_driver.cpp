@@ -170,3 +170,21 @@ TEST_CASE("gjklab run: smoke run, existing output, inspect", "[smoke][driver]") 
   REQUIRE(run({"run", experiment.string()}, &text) == 2);
   CHECK_THAT(text, Catch::Contains("tiny.toml:4"));
 }
+
+TEST_CASE("driver: a stop request leaves an incomplete archive under the temporary name",
+          "[unit][driver]") {
+  const ExperimentConfig config = parse_experiment(kTinyExperiment, "tiny.toml");
+  TempDir dir;
+  RunOptions options;
+  options.output = (dir.path / "stopped.h5").string();
+  const std::atomic<bool> stop{true};
+  options.stop = &stop;
+  const RunReport report = run_experiment(config, options);
+  CHECK_FALSE(report.complete);
+  CHECK(report.cases == 0);
+  CHECK_FALSE(fs::exists(*options.output));
+  REQUIRE(fs::exists(*options.output + ".tmp"));
+  const Archive archive = read_archive(*options.output + ".tmp");
+  CHECK_FALSE(archive.complete);
+  CHECK(archive.results.empty());
+}

@@ -2,6 +2,7 @@
 // computes the metrics and streams the records to the archive, on several threads.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -22,6 +23,9 @@ struct RunOptions {
   bool force = false;                ///< overwrite an existing output file
   std::ostream* progress = nullptr;  ///< progress lines (stderr), or none
   bool live_progress = false;        ///< rewrite one line in place (a terminal)
+  /// Set (e.g. by a SIGINT handler) to stop cleanly: the cases already started are finished,
+  /// written, and the archive is closed as incomplete under its temporary name.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct RunReport {
@@ -29,7 +33,8 @@ struct RunReport {
   RunSummary summary;
   std::vector<std::pair<std::string, RunSummary>> families;  ///< per family, when several
   double seconds = 0;
-  std::uint64_t cases = 0;
+  std::uint64_t cases = 0;     ///< cases written
+  bool complete = false;       ///< false when stopped early (the archive keeps its .tmp name)
 };
 
 /// Everything the run records about case `case_id`: a pure function of (config, case_id)
