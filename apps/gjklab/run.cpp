@@ -26,17 +26,47 @@ extern "C" void on_sigint(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
+/// Prints the end of a run: the summary, or where an incomplete archive was left.
+int report_run(const experiment::RunReport& report, const std::string& what, std::ostream& out,
+               std::ostream& err) {
+  if (!report.complete) {
+    err << "gjklab run: stopped: " << report.cases << " finished cases written to "
+        << report.output.string() << " (marked incomplete; continue with gjklab run --resume "
+        << report.output.string() << ")\n";
+    return interrupted ? 130 : 0;
+  }
+  out << what << ": " << report.cases << " cases in " << report.seconds << " s ("
+      << static_cast<double>(report.cases - report.resumed_cases) / report.seconds
+      << " cases/s), archive " << report.output.string() << "\n\n";
+  experiment::print_summary(out, report.summary);
+  if (!report.families.empty()) {
+    out << "\nper family:\n";
+    experiment::print_family_table(out, report.families);
+  }
+  return 0;
+}
+
 }  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunArgs& args) {
   CLI::App* cmd = app.add_subcommand("run", "run an experiment file and write its HDF5 archive");
-  cmd->add_option("experiment", args.experiment, "experiment file (TOML)")->required();
+  cmd->add_option("experiment", args.experiment, "experiment file (TOML)");
   cmd->add_option("--out", args.output, "archive path (default: the file's `output`)");
   cmd->add_option("--threads", args.threads, "worker threads (default: the file's `threads`)")
       ->check(CLI::Range(1, 256));
   cmd->add_option("--cases", args.cases, "number of cases (default: the file's `cases`)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   cmd->add_flag("--force", args.force, "overwrite an existing archive");
+  cmd->add_option("--resume", args.resume,
+                  "continue an interrupted run (FILE.h5.tmp) from its last checkpoint");
+  cmd->add_option("--stop-after", args.stop_after,
+                  "stop, resumable, once this many cases are written")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  cmd->add_option("--checkpoint", args.checkpoint,
+                  "cases between checkpoints (default " +
+                      std::to_string(experiment::kDefaultCheckpointCases) +
+                      "): at most this much work is lost if the run is killed")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 30));
   return cmd;
 }
 
@@ -47,34 +77,39 @@ CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args) {
 }
 
 int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream& err) {
+  if (args.experiment.empty() == args.resume.empty()) {
+    err << "gjklab run: give an experiment file, or --resume FILE (not both)\n";
+    return 2;
+  }
   try {
-    const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
     experiment::RunOptions options;
-    if (!args.output.empty()) options.output = args.output;
+    if (args.stop_after > 0) options.stop_after = args.stop_after;
+    if (args.checkpoint > 0) options.checkpoint_cases = args.checkpoint;
     if (args.threads > 0) options.threads = args.threads;
-    if (args.cases > 0) options.cases = args.cases;
-    options.force = args.force;
     options.progress = &err;
     options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);
     interrupted = false;
     options.stop = &interrupted;
+    if (!args.resume.empty()) {
+      if (!args.output.empty() || args.cases > 0 || args.force) {
+        err << "gjklab run: --resume continues the archived run as it was planned; --out, "
+               "--cases and --force do not apply\n";
+        return 2;
+      }
+      const auto previous = std::signal(SIGINT, on_sigint);
+      const experiment::RunReport report = experiment::resume_experiment(args.resume, options);
+      std::signal(SIGINT, previous);
+      return report_run(report, "resumed run (" + std::to_string(report.resumed_cases) +
+                                    " cases taken over)", out, err);
+    }
+    const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
+    if (!args.output.empty()) options.output = args.output;
+    if (args.cases > 0) options.cases = args.cases;
+    options.force = args.force;
     const auto previous = std::signal(SIGINT, on_sigint);
     const experiment::RunReport report = experiment::run_experiment(config, options);
     std::signal(SIGINT, previous);
-    if (!report.complete) {
-      err << "gjklab run: interrupted: " << report.cases << " finished cases written to "
-          << report.output.string() << " (marked incomplete)\n";
-      return 130;
-    }
-    out << "experiment '" << config.name << "': " << report.cases << " cases in "
-        << report.seconds << " s (" << static_cast<double>(report.cases) / report.seconds
-        << " cases/s), archive " << report.output.string() << "\n\n";
-    experiment::print_summary(out, report.summary);
-    if (!report.families.empty()) {
-      out << "\nper family:\n";
-      experiment::print_family_table(out, report.families);
-    }
-    return 0;
+    return report_run(report, "experiment '" + config.name + "'", out, err);
   } catch (const experiment::ConfigError& e) {
     err << "gjklab run: " << e.what() << "\n";
     return 2;

@@ -18,6 +18,9 @@ struct RunArgs {
   int threads = 0;         ///< 0: the file's `threads`
   std::uint64_t cases = 0; ///< 0: the file's `cases`
   bool force = false;
+  std::string resume;            ///< continue this interrupted run instead
+  std::uint64_t stop_after = 0;  ///< 0: run to the end
+  std::uint64_t checkpoint = 0;  ///< 0: the default interval
 };
 
 struct InspectArgs {

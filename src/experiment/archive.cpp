@@ -22,10 +22,12 @@ namespace fs = std::filesystem;
 namespace {
 
 // Root attributes with a fixed meaning; every other root attribute is a provenance pair.
-constexpr std::array<std::string_view, 12> kRootAttributes = {
-    "schema_version", "experiment_name", "experiment_text", "seed",
-    "cases_planned",  "start_time",      "end_time",        "oracle",
-    "touching_band",  "family_names",    "algorithm_names", "complete"};
+constexpr std::array<std::string_view, 16> kRootAttributes = {
+    "schema_version",      "experiment_name",      "experiment_text",      "seed",
+    "cases_planned",       "start_time",           "end_time",             "oracle",
+    "touching_band",       "family_names",         "algorithm_names",      "complete",
+    "checkpoint_cases",    "checkpoint_geometry",  "checkpoint_vertices_a",
+    "checkpoint_vertices_b"};
 
 bool is_root_attribute(std::string_view name) {
   return std::find(kRootAttributes.begin(), kRootAttributes.end(), name) != kRootAttributes.end();
@@ -173,6 +175,17 @@ struct ArchiveWriter::Impl {
 
   void create(const ArchiveHeader& h);
   void write(std::span<const CaseResult> results);
+
+  /// Records how many rows every group holds and flushes the file: an interrupted run can be
+  /// read back (and resumed) up to the last checkpoint even if a later write was cut off.
+  void checkpoint() {
+    const hid_t r = root.get();
+    h5::write_attr_u64(cx, r, "/", "checkpoint_cases", columns->cases.case_id.rows());
+    h5::write_attr_u64(cx, r, "/", "checkpoint_geometry", columns->geometry.case_id.rows());
+    h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_a", columns->geometry.vertices_a.rows());
+    h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_b", columns->geometry.vertices_b.rows());
+    cx.check(H5Fflush(root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
+  }
 };
 
 void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
@@ -405,6 +418,7 @@ void ArchiveWriter::append(std::span<const CaseResult> results) {
   }
   try {
     w.write(results);
+    w.checkpoint();
   } catch (...) {
     w.broken = true;
     throw;
@@ -445,7 +459,7 @@ const fs::path& ArchiveWriter::temporary_path() const {
 
 Archive read_archive(const fs::path& path) {
   h5::quiet_errors();
-  const h5::Context cx(path.string());
+  h5::Context cx(path.string());
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) cx.error("no such file");
   if (H5Fis_hdf5(path.c_str()) <= 0) cx.error("not an HDF5 file");
@@ -482,6 +496,18 @@ Archive read_archive(const fs::path& path) {
     h.provenance.emplace_back(key, h5::read_attr_string(cx, r, "/", key));
   }
 
+  // An incomplete run is read up to its last checkpoint: rows written after it (a write cut
+  // off by a kill) are ignored.
+  auto checkpoint = [&](const char* name) {
+    return !a.complete && h5::has_attr(cx, r, "/", name) ? h5::read_attr_u64(cx, r, "/", name)
+                                                         : h5::any_rows;
+  };
+  const hsize_t committed_cases = checkpoint("checkpoint_cases");
+  const hsize_t committed_geometry = checkpoint("checkpoint_geometry");
+  const hsize_t committed_a = checkpoint("checkpoint_vertices_a");
+  const hsize_t committed_b = checkpoint("checkpoint_vertices_b");
+  cx.allow_prefix_reads(!a.complete);
+
   const Types t(cx);
   const hid_t u64m = H5T_NATIVE_UINT64, u32m = H5T_NATIVE_UINT32, i32m = H5T_NATIVE_INT32,
               f64m = H5T_NATIVE_DOUBLE;
@@ -492,7 +518,8 @@ Archive read_archive(const fs::path& path) {
     const std::string p = "/cases";
     const h5::Handle g = h5::open_group(cx, r, "/", "cases");
     const hid_t gi = g.get();
-    const auto case_id = h5::read_column<std::uint64_t>(cx, gi, p, "case_id", u64m);
+    const auto case_id =
+        h5::read_column<std::uint64_t>(cx, gi, p, "case_id", u64m, committed_cases);
     n = case_id.size();
     const auto family = h5::read_column<std::uint32_t>(cx, gi, p, "family", u32m, n);
     const auto shape_a = h5::read_column<ShapeKind>(cx, gi, p, "shape_a", t.shape.get(), n);
@@ -588,14 +615,15 @@ Archive read_archive(const fs::path& path) {
     const std::string p = "/geometry";
     const h5::Handle g = h5::open_group(cx, r, "/", "geometry");
     const hid_t gi = g.get();
-    const auto case_id = h5::read_column<std::uint64_t>(cx, gi, p, "case_id", u64m);
+    const auto case_id =
+        h5::read_column<std::uint64_t>(cx, gi, p, "case_id", u64m, committed_geometry);
     const std::size_t m = case_id.size();
     const auto a_offset = h5::read_column<std::uint64_t>(cx, gi, p, "a_offset", u64m, m);
     const auto a_count = h5::read_column<std::uint64_t>(cx, gi, p, "a_count", u64m, m);
     const auto b_offset = h5::read_column<std::uint64_t>(cx, gi, p, "b_offset", u64m, m);
     const auto b_count = h5::read_column<std::uint64_t>(cx, gi, p, "b_count", u64m, m);
-    const auto va = h5::read_column<double>(cx, gi, p, "vertices_a", f64m, h5::any_rows, 3);
-    const auto vb = h5::read_column<double>(cx, gi, p, "vertices_b", f64m, h5::any_rows, 3);
+    const auto va = h5::read_column<double>(cx, gi, p, "vertices_a", f64m, committed_a, 3);
+    const auto vb = h5::read_column<double>(cx, gi, p, "vertices_b", f64m, committed_b, 3);
     std::unordered_map<std::uint64_t, std::size_t> index;
     index.reserve(n);
     for (std::size_t i = 0; i < n; ++i)

@@ -204,30 +204,55 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   return result;
 }
 
-RunReport run_experiment(const ExperimentConfig& config, const RunOptions& options) {
-  RunReport report;
-  report.output = options.output.value_or(config.output);
-  const std::uint64_t n_values =
-      config.geometry_sweep ? config.geometry_sweep->values.size() : std::uint64_t{1};
-  const std::uint64_t total = options.cases ? *options.cases * n_values : config.total_cases();
-  const int threads = std::max(1, options.threads.value_or(config.threads));
-  ArchiveWriter writer(report.output, archive_header(config, total), options.force);
+namespace {
 
+/// The run loop shared by a fresh run and a resumed one: evaluates cases [first, total) in
+/// batches of options.checkpoint_cases on the worker threads, appends each batch in case
+/// order and checkpoints the archive. Stops early (archive incomplete) on a stop request or
+/// at options.stop_after.
+RunReport run_cases(const ExperimentConfig& config, const RunOptions& options, ArchiveWriter& writer,
+                    std::span<const CaseResult> prior, std::uint64_t total) {
+  RunReport report;
+  const int threads = std::max(1, options.threads.value_or(config.threads));
+  const std::uint64_t batch_cases = std::max<std::uint64_t>(1, options.checkpoint_cases);
   std::vector<std::string> names;
   for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.label);
   SummaryBuilder summary(names);
   FamilySummaryBuilder by_family(config.result_family_names(), names);
   Progress progress(options.progress, options.live_progress, total);
   const auto start = Clock::now();
+  auto stopping = [&] { return options.stop && options.stop->load(); };
+
+  auto record = [&](std::span<const CaseResult> results) {
+    writer.append(results);
+    for (const CaseResult& r : results) {
+      summary.add(r);
+      by_family.add(r);
+    }
+  };
+  auto finish = [&](std::uint64_t written, bool complete) {
+    progress.update(written, true);
+    writer.finish(utc_now(), complete);
+    report.output = complete ? std::filesystem::path(options.output.value_or(config.output))
+                             : writer.temporary_path();
+    report.cases = written;
+    report.complete = complete;
+    report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    report.summary = summary.build();
+    if (config.result_family_names().size() > 1) report.families = by_family.build();
+    return report;
+  };
+
+  for (std::size_t i = 0; i < prior.size(); i += batch_cases)
+    record(prior.subspan(i, std::min<std::size_t>(batch_cases, prior.size() - i)));
 
   std::vector<CaseResult> batch;
-  for (std::uint64_t first = 0; first < total; first += kBatchCases) {
-    const std::uint64_t count = std::min(kBatchCases, total - first);
+  for (std::uint64_t first = prior.size(); first < total; first += batch_cases) {
+    const std::uint64_t count = std::min(batch_cases, total - first);
     batch.assign(count, CaseResult{});
     std::atomic<std::uint64_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
-    auto stopping = [&] { return options.stop && options.stop->load(); };
     auto worker = [&] {
       // The stop flag is read before an index is taken, so every taken case is finished and
       // the finished cases of the batch are exactly its first min(next, count).
@@ -253,35 +278,61 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
     if (failure) std::rethrow_exception(failure);
     if (stopping()) {
       batch.resize(std::min<std::uint64_t>(next.load(), count));
-      writer.append(batch);
-      for (const CaseResult& r : batch) {
-        summary.add(r);
-        by_family.add(r);
-      }
-      report.cases = first + batch.size();
-      report.complete = false;
-      progress.update(report.cases, true);
-      writer.finish(utc_now(), false);
-      report.output = writer.temporary_path();
-      report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-      report.summary = summary.build();
-      if (config.result_family_names().size() > 1) report.families = by_family.build();
-      return report;
+      record(batch);
+      return finish(first + batch.size(), false);
     }
-    writer.append(batch);
-    for (const CaseResult& r : batch) {
-      summary.add(r);
-      by_family.add(r);
-    }
+    record(batch);
     progress.update(first + count);
+    if (options.stop_after && first + count >= *options.stop_after && first + count < total)
+      return finish(first + count, false);
   }
-  progress.update(total, true);
-  writer.finish(utc_now(), true);
-  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  report.summary = summary.build();
-  if (config.result_family_names().size() > 1) report.families = by_family.build();
-  report.cases = total;
-  report.complete = true;
+  return finish(total, true);
+}
+
+}  // namespace
+
+RunReport run_experiment(const ExperimentConfig& config, const RunOptions& options) {
+  const std::uint64_t n_values =
+      config.geometry_sweep ? config.geometry_sweep->values.size() : std::uint64_t{1};
+  const std::uint64_t total = options.cases ? *options.cases * n_values : config.total_cases();
+  RunOptions resolved = options;
+  resolved.output = options.output.value_or(config.output);
+  ArchiveWriter writer(*resolved.output, archive_header(config, total), options.force);
+  return run_cases(config, resolved, writer, {}, total);
+}
+
+RunReport resume_experiment(const std::filesystem::path& path, const RunOptions& options) {
+  // The interrupted archive: FILE.tmp, named either way.
+  std::filesystem::path temporary = path;
+  if (temporary.extension() != ".tmp") temporary += ".tmp";
+  if (!std::filesystem::exists(temporary))
+    throw std::runtime_error(temporary.string() + ": no interrupted run to resume" +
+                             (std::filesystem::exists(path) ? " (" + path.string() +
+                                                                  " is a finished archive)"
+                                                            : ""));
+  Archive prior = read_archive(temporary);
+  if (prior.complete) throw std::runtime_error(temporary.string() + " is already complete");
+  const ExperimentConfig config =
+      parse_experiment(prior.header.experiment_text, temporary.string() + " (archived experiment)");
+
+  std::filesystem::path final_path = temporary;
+  final_path.replace_extension();  // drops ".tmp"
+  // The finished cases are rewritten into a fresh temporary file (identical to what an
+  // uninterrupted run writes); the interrupted file is kept aside until that succeeds.
+  const std::filesystem::path aside = temporary.string() + ".partial";
+  std::filesystem::rename(temporary, aside);
+  ArchiveHeader header = prior.header;
+  header.provenance = build_provenance();
+  RunOptions resolved = options;
+  resolved.output = final_path.string();
+  RunReport report;
+  {
+    ArchiveWriter writer(final_path, header, /*overwrite=*/false);
+    const std::vector<CaseResult> finished = std::move(prior.results);
+    report = run_cases(config, resolved, writer, finished, header.cases_planned);
+    report.resumed_cases = finished.size();
+  }
+  std::filesystem::remove(aside);
   return report;
 }
 

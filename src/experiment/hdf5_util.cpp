@@ -50,8 +50,13 @@ std::string attr_label(const std::string& obj_path, const std::string& name) {
 void write_attr(const Context& cx, hid_t obj, const std::string& obj_path, const std::string& name,
                 hid_t file_type, hid_t mem_type, hid_t space, const void* data) {
   const std::string label = attr_label(obj_path, name);
-  Handle attr = cx.handle(H5Acreate2(obj, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT),
-                          H5Aclose, "cannot create " + label);
+  // An existing attribute (a checkpoint counter) is overwritten in place: same type and shape.
+  const bool exists = cx.check_tri(H5Aexists(obj, name.c_str()), "cannot look up " + label);
+  Handle attr = exists ? cx.handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose,
+                                   "cannot open " + label)
+                       : cx.handle(H5Acreate2(obj, name.c_str(), file_type, space, H5P_DEFAULT,
+                                              H5P_DEFAULT),
+                                   H5Aclose, "cannot create " + label);
   if (H5Sget_simple_extent_npoints(space) > 0)  // an empty array has nothing to write
     cx.check(H5Awrite(attr.get(), mem_type, data), "cannot write " + label);
   cx.check(attr.close(), "cannot close " + label);
@@ -237,15 +242,43 @@ OpenDataset open_dataset(const Context& cx, hid_t group, const std::string& grou
   if (width != 1 && dims[1] != width)
     cx.error(label + " has " + std::to_string(dims[1]) + " columns, expected " +
              std::to_string(width));
-  if (expected_rows != any_rows && dims[0] != expected_rows)
+  const bool prefix = cx.prefix_reads() && expected_rows != any_rows && dims[0] > expected_rows;
+  if (expected_rows != any_rows && dims[0] != expected_rows && !prefix)
     cx.error(label + " has " + std::to_string(dims[0]) + " rows, expected " +
              std::to_string(expected_rows));
-  d.rows = dims[0];
+  d.stored_rows = dims[0];
+  d.rows = prefix ? expected_rows : dims[0];
+  d.width = width;
   return d;
 }
 
+namespace {
+
+/// The file and memory dataspaces of the first d.rows rows.
+std::pair<Handle, Handle> row_spaces(const Context& cx, const OpenDataset& d) {
+  Handle file_space =
+      cx.handle(H5Dget_space(d.dataset.get()), H5Sclose, "cannot read the shape of " + d.path);
+  const int rank = d.width == 1 ? 1 : 2;
+  const hsize_t start[2] = {0, 0};
+  const hsize_t count[2] = {d.rows, d.width};
+  cx.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+           "cannot select rows of " + d.path);
+  Handle mem_space = cx.handle(H5Screate_simple(rank, count, nullptr), H5Sclose,
+                               "cannot create a dataspace for " + d.path);
+  return {std::move(file_space), std::move(mem_space)};
+}
+
+}  // namespace
+
 void read_all(const Context& cx, const OpenDataset& d, hid_t mem_type, void* buffer) {
-  cx.check(H5Dread(d.dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer),
+  if (d.rows == d.stored_rows) {
+    cx.check(H5Dread(d.dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer),
+             "cannot read dataset " + d.path);
+    return;
+  }
+  const auto [file_space, mem_space] = row_spaces(cx, d);
+  cx.check(H5Dread(d.dataset.get(), mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT,
+                   buffer),
            "cannot read dataset " + d.path);
 }
 
@@ -256,8 +289,9 @@ std::vector<std::string> read_string_column(const Context& cx, hid_t group,
   const OpenDataset d = open_dataset(cx, group, group_path, name, type.get(), 1, expected_rows);
   std::vector<char*> raw(d.rows, nullptr);
   if (raw.empty()) return {};
-  Handle space = cx.handle(H5Dget_space(d.dataset.get()), H5Sclose,
-                           "cannot read the shape of dataset " + d.path);
+  const hsize_t rows = d.rows;
+  Handle space = cx.handle(H5Screate_simple(1, &rows, nullptr), H5Sclose,
+                           "cannot create a dataspace for " + d.path);
   const VlenGuard guard(type.get(), space.get(), raw.data());
   read_all(cx, d, type.get(), raw.data());
   return to_strings(raw);

@@ -53,6 +53,12 @@ class Context {
   /// Throws ArchiveError "archive FILE: WHAT" without consulting HDF5's error stack.
   [[noreturn]] void error(std::string_view what) const;
 
+  /// Reading an interrupted archive: datasets may hold more rows than were committed (a
+  /// write cut off after the last checkpoint); open_dataset then reads only the first
+  /// expected_rows rows instead of failing.
+  void allow_prefix_reads(bool allow) { prefix_reads_ = allow; }
+  bool prefix_reads() const { return prefix_reads_; }
+
   /// Returns id when it is valid, else fail(what).
   hid_t check_id(hid_t id, std::string_view what) const {
     if (id < 0) fail(what);
@@ -72,6 +78,7 @@ class Context {
 
  private:
   std::string file_;
+  bool prefix_reads_ = false;
 };
 
 // ---- types ----
@@ -144,7 +151,9 @@ Handle create_group(const Context& cx, hid_t parent, const std::string& parent_p
 /// A dataset opened for reading, its shape checked.
 struct OpenDataset {
   Handle dataset;
-  hsize_t rows = 0;
+  hsize_t rows = 0;         ///< rows to read
+  hsize_t stored_rows = 0;  ///< rows in the file (more than `rows` only for prefix reads)
+  hsize_t width = 1;
   std::string path;
 };
 inline constexpr hsize_t any_rows = static_cast<hsize_t>(-1);

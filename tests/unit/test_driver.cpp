@@ -188,3 +188,34 @@ TEST_CASE("driver: a stop request leaves an incomplete archive under the tempora
   CHECK_FALSE(archive.complete);
   CHECK(archive.results.empty());
 }
+
+TEST_CASE("driver: a run stopped after a checkpoint resumes to the uninterrupted archive",
+          "[unit][driver]") {
+  const ExperimentConfig config = parse_experiment(kTinyExperiment, "tiny.toml");
+  TempDir dir;
+  RunOptions whole;
+  whole.output = (dir.path / "whole.h5").string();
+  run_experiment(config, whole);
+
+  RunOptions part;
+  part.output = (dir.path / "part.h5").string();
+  part.checkpoint_cases = 7;
+  part.stop_after = 15;
+  const RunReport stopped = run_experiment(config, part);
+  CHECK_FALSE(stopped.complete);
+  CHECK(stopped.cases == 21);  // three checkpoints of 7
+  CHECK(read_archive(*part.output + ".tmp").results.size() == 21);
+
+  RunOptions more;
+  more.threads = 2;
+  const RunReport resumed = resume_experiment(*part.output + ".tmp", more);
+  CHECK(resumed.complete);
+  CHECK(resumed.resumed_cases == 21);
+  CHECK_FALSE(fs::exists(*part.output + ".tmp"));
+  CHECK_FALSE(fs::exists(*part.output + ".tmp.partial"));
+  const Archive a = read_archive(*whole.output), b = read_archive(*part.output);
+  CHECK(b.complete);
+  CHECK(a.header.start_time <= b.header.start_time);
+  require_same_results(a.results, b.results);
+  CHECK_THROWS_WITH(resume_experiment(*part.output, more), Catch::Contains("no interrupted run"));
+}
