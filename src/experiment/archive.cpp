@@ -22,15 +22,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // Root attributes with a fixed meaning; every other root attribute is a provenance pair.
-constexpr std::array<std::string_view, 16> kRootAttributes = {
+constexpr std::array<std::string_view, 17> kRootAttributes = {
     "schema_version",      "experiment_name",      "experiment_text",      "seed",
     "cases_planned",       "start_time",           "end_time",             "oracle",
     "touching_band",       "family_names",         "algorithm_names",      "complete",
     "checkpoint_cases",    "checkpoint_geometry",  "checkpoint_vertices_a",
-    "checkpoint_vertices_b"};
+    "checkpoint_vertices_b", "trace_mode"};
 
 bool is_root_attribute(std::string_view name) {
-  return std::find(kRootAttributes.begin(), kRootAttributes.end(), name) != kRootAttributes.end();
+  return name.starts_with("checkpoint_") ||
+         std::find(kRootAttributes.begin(), kRootAttributes.end(), name) != kRootAttributes.end();
 }
 
 // Rows per chunk of the per-case columns: 4096, or fewer for a run planned smaller.
@@ -87,7 +88,7 @@ std::vector<T> gather(std::span<const CaseResult> results, F field) {
 
 // The HDF5 types of the archive, shared by the writer and the reader.
 struct Types {
-  h5::Handle boolean, string, shape, placement, contact, termination, failure;
+  h5::Handle boolean, string, shape, placement, contact, termination, failure, step;
 
   explicit Types(const h5::Context& cx)
       : boolean(h5::bool_type(cx)),
@@ -96,7 +97,8 @@ struct Types {
         placement(h5::enum_type<Placement>(cx)),
         contact(h5::enum_type<ContactClass>(cx)),
         termination(h5::enum_type<Termination>(cx)),
-        failure(h5::enum_type<FailureClass>(cx)) {}
+        failure(h5::enum_type<FailureClass>(cx)),
+        step(h5::enum_type<GjkStep>(cx)) {}
 };
 
 }  // namespace
@@ -119,11 +121,22 @@ struct ArchiveWriter::Impl {
   struct GeometryColumns {
     h5::Column case_id, a_offset, a_count, b_offset, b_count, vertices_a, vertices_b;
   };
+  /// One row per traced iteration (see GjkIterationTrace); simplex columns hold 4 points.
+  struct TraceColumns {
+    h5::Column case_id, iteration, step, direction, support, index_a, index_b, v_norm_squared,
+        v_dot_w, lower_bound, simplex_size, simplex, simplex_index_a, simplex_index_b, weights;
+    std::vector<h5::Column*> all() {
+      return {&case_id,     &iteration,      &step,           &direction,    &support,
+              &index_a,     &index_b,        &v_norm_squared, &v_dot_w,      &lower_bound,
+              &simplex_size, &simplex,       &simplex_index_a, &simplex_index_b, &weights};
+    }
+  };
   struct Columns {
     CaseColumns cases;
     std::optional<ExactColumns> exact;
     std::vector<AlgorithmColumns> algorithms;
     GeometryColumns geometry;
+    std::vector<TraceColumns> traces;  ///< per algorithm, when traces are kept
 
     /// Closes every dataset, reporting the first that fails to close.
     void close(const h5::Context& cx) {
@@ -141,6 +154,8 @@ struct ArchiveWriter::Impl {
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
                     &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure});
+      for (TraceColumns& t : traces)
+        for (h5::Column* c : t.all()) all.push_back(c);
       for (h5::Column* c : all)
         cx.check(c->close(), "cannot close dataset " + c->path());
     }
@@ -175,6 +190,7 @@ struct ArchiveWriter::Impl {
 
   void create(const ArchiveHeader& h);
   void write(std::span<const CaseResult> results);
+  void append_traces(TraceColumns& c, std::span<const CaseResult> rs, std::size_t algorithm);
 
   /// Records how many rows every group holds and flushes the file: an interrupted run can be
   /// read back (and resumed) up to the last checkpoint even if a later write was cut off.
@@ -184,6 +200,9 @@ struct ArchiveWriter::Impl {
     h5::write_attr_u64(cx, r, "/", "checkpoint_geometry", columns->geometry.case_id.rows());
     h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_a", columns->geometry.vertices_a.rows());
     h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_b", columns->geometry.vertices_b.rows());
+    for (std::size_t k = 0; k < columns->traces.size(); ++k)
+      h5::write_attr_u64(cx, r, "/", "checkpoint_traces_" + std::to_string(k),
+                         columns->traces[k].case_id.rows());
     cx.check(H5Fflush(root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
   }
 };
@@ -214,6 +233,7 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
   h5::write_attr_f64(cx, r, "/", "touching_band", h.touching_band);
   h5::write_attr_strings(cx, r, "/", "family_names", h.family_names);
   h5::write_attr_strings(cx, r, "/", "algorithm_names", h.algorithm_names);
+  h5::write_attr_string(cx, r, "/", "trace_mode", h.trace_mode);
 
   types.emplace(cx);
   const Types& t = *types;
@@ -295,6 +315,31 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
         column(gi, p, "vertices_b", f64f, f64m, kVertexChunkRows, 3),
     };
   }
+  if (h.trace_mode != "none") {
+    h5::Handle all = h5::create_group(cx, r, "/", "traces");
+    for (const std::string& name : h.algorithm_names) {
+      const std::string p = "/traces/" + name;
+      h5::Handle g = h5::create_group(cx, all.get(), "/traces", name);
+      const hid_t gi = g.get();
+      c.traces.push_back(TraceColumns{
+          column(gi, p, "case_id", u64f, u64m, kVertexChunkRows),
+          column(gi, p, "iteration", i32f, i32m, kVertexChunkRows),
+          column(gi, p, "step", t.step.get(), t.step.get(), kVertexChunkRows),
+          column(gi, p, "direction", f64f, f64m, kVertexChunkRows, 3),
+          column(gi, p, "support", f64f, f64m, kVertexChunkRows, 3),
+          column(gi, p, "index_a", i32f, i32m, kVertexChunkRows),
+          column(gi, p, "index_b", i32f, i32m, kVertexChunkRows),
+          column(gi, p, "v_norm_squared", f64f, f64m, kVertexChunkRows),
+          column(gi, p, "v_dot_w", f64f, f64m, kVertexChunkRows),
+          column(gi, p, "lower_bound", f64f, f64m, kVertexChunkRows),
+          column(gi, p, "simplex_size", i32f, i32m, kVertexChunkRows),
+          column(gi, p, "simplex", f64f, f64m, kVertexChunkRows, 12),
+          column(gi, p, "simplex_index_a", i32f, i32m, kVertexChunkRows, 4),
+          column(gi, p, "simplex_index_b", i32f, i32m, kVertexChunkRows, 4),
+          column(gi, p, "weights", f64f, f64m, kVertexChunkRows, 4),
+      });
+    }
+  }
   columns = std::move(c);
 }
 
@@ -368,6 +413,55 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     g.vertices_a.append(cx, va);
     g.vertices_b.append(cx, vb);
   }
+  for (std::size_t k = 0; k < c.traces.size(); ++k) append_traces(c.traces[k], rs, k);
+}
+
+void ArchiveWriter::Impl::append_traces(TraceColumns& c, std::span<const CaseResult> rs,
+                                        std::size_t algorithm) {
+  std::vector<std::uint64_t> case_id;
+  std::vector<std::int32_t> iteration, index_a, index_b, simplex_size, sia, sib;
+  std::vector<GjkStep> step;
+  std::vector<double> direction, support, vv, vw, lb, simplex, weights;
+  for (const CaseResult& r : rs) {
+    if (algorithm >= r.traces.size()) continue;
+    for (const GjkIterationTrace& t : r.traces[algorithm]) {
+      case_id.push_back(r.record.case_id);
+      iteration.push_back(t.iteration);
+      step.push_back(t.step);
+      direction.insert(direction.end(), {t.direction.x(), t.direction.y(), t.direction.z()});
+      const Vec3& w = t.support.w;
+      support.insert(support.end(), {w.x(), w.y(), w.z()});
+      index_a.push_back(t.support.index_a);
+      index_b.push_back(t.support.index_b);
+      vv.push_back(t.v_norm_squared);
+      vw.push_back(t.v_dot_w);
+      lb.push_back(t.lower_bound);
+      simplex_size.push_back(t.simplex.size());
+      for (int i = 0; i < 4; ++i) {
+        const bool in = i < t.simplex.size();
+        const Vec3 p = in ? t.simplex[i].w : Vec3::Zero();
+        simplex.insert(simplex.end(), {p.x(), p.y(), p.z()});
+        sia.push_back(in ? t.simplex[i].index_a : -1);
+        sib.push_back(in ? t.simplex[i].index_b : -1);
+        weights.push_back(in ? t.weights[i] : 0.0);
+      }
+    }
+  }
+  c.case_id.append(cx, case_id);
+  c.iteration.append(cx, iteration);
+  c.step.append(cx, step);
+  c.direction.append(cx, direction);
+  c.support.append(cx, support);
+  c.index_a.append(cx, index_a);
+  c.index_b.append(cx, index_b);
+  c.v_norm_squared.append(cx, vv);
+  c.v_dot_w.append(cx, vw);
+  c.lower_bound.append(cx, lb);
+  c.simplex_size.append(cx, simplex_size);
+  c.simplex.append(cx, simplex);
+  c.simplex_index_a.append(cx, sia);
+  c.simplex_index_b.append(cx, sib);
+  c.weights.append(cx, weights);
 }
 
 ArchiveWriter::ArchiveWriter(const fs::path& final_path, const ArchiveHeader& header,
@@ -456,6 +550,82 @@ const fs::path& ArchiveWriter::temporary_path() const {
 }
 
 // ---- reader ----
+
+namespace {
+
+/// Rows of each algorithm's trace group up to the last checkpoint (any_rows when complete).
+std::vector<hsize_t> committed_traces_for(const h5::Context& cx, hid_t r, bool complete,
+                                          const ArchiveHeader& h) {
+  std::vector<hsize_t> rows(h.algorithm_names.size(), h5::any_rows);
+  if (complete) return rows;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::string name = "checkpoint_traces_" + std::to_string(k);
+    if (h5::has_attr(cx, r, "/", name)) rows[k] = h5::read_attr_u64(cx, r, "/", name);
+  }
+  return rows;
+}
+
+/// Reads /traces/<algorithm> back into each case's traces.
+void read_traces(const h5::Context& cx, hid_t r, const Types& t, Archive& a,
+                 const std::vector<hsize_t>& committed) {
+  const auto& names = a.header.algorithm_names;
+  std::unordered_map<std::uint64_t, std::size_t> index;
+  for (std::size_t i = 0; i < a.results.size(); ++i) {
+    index.emplace(a.results[i].record.case_id, i);
+    a.results[i].traces.assign(names.size(), {});
+  }
+  const hid_t u64m = H5T_NATIVE_UINT64, i32m = H5T_NATIVE_INT32, f64m = H5T_NATIVE_DOUBLE;
+  const h5::Handle all = h5::open_group(cx, r, "/", "traces");
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string p = "/traces/" + names[k];
+    const h5::Handle g = h5::open_group(cx, all.get(), "/traces", names[k]);
+    const hid_t gi = g.get();
+    const auto case_id = h5::read_column<std::uint64_t>(cx, gi, p, "case_id", u64m, committed[k]);
+    const std::size_t n = case_id.size();
+    const auto iteration = h5::read_column<std::int32_t>(cx, gi, p, "iteration", i32m, n);
+    const auto step = h5::read_column<GjkStep>(cx, gi, p, "step", t.step.get(), n);
+    const auto direction = h5::read_column<double>(cx, gi, p, "direction", f64m, n, 3);
+    const auto support = h5::read_column<double>(cx, gi, p, "support", f64m, n, 3);
+    const auto index_a = h5::read_column<std::int32_t>(cx, gi, p, "index_a", i32m, n);
+    const auto index_b = h5::read_column<std::int32_t>(cx, gi, p, "index_b", i32m, n);
+    const auto vv = h5::read_column<double>(cx, gi, p, "v_norm_squared", f64m, n);
+    const auto vw = h5::read_column<double>(cx, gi, p, "v_dot_w", f64m, n);
+    const auto lb = h5::read_column<double>(cx, gi, p, "lower_bound", f64m, n);
+    const auto size = h5::read_column<std::int32_t>(cx, gi, p, "simplex_size", i32m, n);
+    const auto simplex = h5::read_column<double>(cx, gi, p, "simplex", f64m, n, 12);
+    const auto sia = h5::read_column<std::int32_t>(cx, gi, p, "simplex_index_a", i32m, n, 4);
+    const auto sib = h5::read_column<std::int32_t>(cx, gi, p, "simplex_index_b", i32m, n, 4);
+    const auto weights = h5::read_column<double>(cx, gi, p, "weights", f64m, n, 4);
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto it = index.find(case_id[j]);
+      if (it == index.end())
+        cx.error(p + "/case_id " + std::to_string(case_id[j]) + " is not in /cases/case_id");
+      if (size[j] < 0 || size[j] > Simplex::kCapacity)
+        cx.error(p + "/simplex_size " + std::to_string(size[j]) + " is out of range");
+      GjkIterationTrace tr;
+      tr.iteration = iteration[j];
+      tr.step = step[j];
+      tr.direction = Vec3(direction[3 * j], direction[3 * j + 1], direction[3 * j + 2]);
+      tr.support.w = Vec3(support[3 * j], support[3 * j + 1], support[3 * j + 2]);
+      tr.support.index_a = index_a[j];
+      tr.support.index_b = index_b[j];
+      tr.v_norm_squared = vv[j];
+      tr.v_dot_w = vw[j];
+      tr.lower_bound = lb[j];
+      for (int i = 0; i < size[j]; ++i) {
+        SimplexVertex v;
+        v.w = Vec3(simplex[12 * j + 3 * i], simplex[12 * j + 3 * i + 1], simplex[12 * j + 3 * i + 2]);
+        v.index_a = sia[4 * j + i];
+        v.index_b = sib[4 * j + i];
+        tr.simplex.push(v);
+        tr.weights[i] = weights[4 * j + i];
+      }
+      a.results[it->second].traces[k].push_back(tr);
+    }
+  }
+}
+
+}  // namespace
 
 Archive read_archive(const fs::path& path) {
   h5::quiet_errors();
@@ -650,6 +820,8 @@ Archive read_archive(const fs::path& path) {
       geo.b = slice(vb, b_offset[j], b_count[j], "vertices_b");
     }
   }
+  if (h5::has_attr(cx, r, "/", "trace_mode")) h.trace_mode = h5::read_attr_string(cx, r, "/", "trace_mode");
+  if (h.trace_mode != "none") read_traces(cx, r, t, a, committed_traces_for(cx, r, a.complete, h));
   return a;
 }
 

@@ -653,7 +653,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
 
   const Section top(source, root, "", 1);
   top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle",
-                  "timing", "placement", "family", "algorithm", "sweep"});
+                  "timing", "placement", "family", "algorithm", "sweep", "trace"});
 
   ExperimentConfig config;
   config.source = source;
@@ -738,6 +738,16 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     config.algorithms.push_back(std::move(spec));
   }
   if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);
+  if (const toml::table* t = top.subtable("trace")) {
+    const Section trace = top.child(*t, "trace");
+    trace.allow_only({"mode"});
+    if (const auto mode = trace.string("mode")) {
+      if (*mode != "none" && *mode != "failing" && *mode != "all")
+        trace.fail(*trace.find("mode"), "mode",
+                   "unknown trace mode '" + *mode + "'; valid: none, failing, all");
+      config.trace = *mode;
+    }
+  }
   return config;
 }
 

@@ -142,6 +142,7 @@ ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases
   }
   h.oracle = config.oracle;
   h.touching_band = config.touching_band;
+  h.trace_mode = config.trace;
   return h;
 }
 
@@ -199,6 +200,19 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   }
   for (AlgorithmRecord& r : result.algorithms)
     r.failure = classify_failure(r, result.exact ? &*result.exact : nullptr, config.touching_band);
+  if (config.trace != "none") {
+    // Tracing runs the same arithmetic, so the traced rerun repeats the recorded answer.
+    result.traces.resize(config.algorithms.size());
+    for (std::size_t i = 0; i < config.algorithms.size(); ++i) {
+      const AlgorithmInfo& algorithm = *find_algorithm(config.algorithms[i].name);
+      const bool wanted =
+          config.trace == "all" || result.algorithms[i].failure != FailureClass::none;
+      if (!wanted || !algorithm.run_traced) continue;
+      TraceRecorder recorder;
+      algorithm.run_traced(a, b, config.algorithms[i].options, recorder);
+      result.traces[i] = std::move(recorder.iterations);
+    }
+  }
   if (worth_keeping(result, config.touching_band))
     result.geometry = CaseGeometry{std::move(generated.a), std::move(generated.b)};
   return result;

@@ -219,3 +219,29 @@ TEST_CASE("driver: a run stopped after a checkpoint resumes to the uninterrupted
   require_same_results(a.results, b.results);
   CHECK_THROWS_WITH(resume_experiment(*part.output, more), Catch::Contains("no interrupted run"));
 }
+
+TEST_CASE("driver: traces of every query are archived and read back", "[unit][driver]") {
+  const ExperimentConfig config =
+      parse_experiment(std::string(kTinyExperiment) + "\n[trace]\nmode = \"all\"\n", "tiny.toml");
+  TempDir dir;
+  RunOptions options;
+  options.output = (dir.path / "traced.h5").string();
+  options.cases = 10;
+  run_experiment(config, options);
+  const Archive archive = read_archive(*options.output);
+  CHECK(archive.header.trace_mode == "all");
+  REQUIRE(archive.results.size() == 10);
+  for (const CaseResult& r : archive.results) {
+    REQUIRE(r.traces.size() == 3);
+    // gjk-bool and gjk-johnson: one trace row per iteration; libccd cannot be traced.
+    for (int k : {0, 1}) {
+      CHECK(r.traces[k].size() == static_cast<std::size_t>(r.algorithms[k].iterations));
+      for (std::size_t i = 0; i < r.traces[k].size(); ++i)
+        CHECK(r.traces[k][i].iteration == static_cast<int>(i) + 1);
+    }
+    CHECK(r.traces[2].empty());
+    // The last row of a converged query names the branch that ended it.
+    if (r.algorithms[1].termination == gjklab::Termination::converged)
+      CHECK(r.traces[1].back().step != gjklab::GjkStep::continued);
+  }
+}

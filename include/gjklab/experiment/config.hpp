@@ -111,6 +111,9 @@ struct ExperimentConfig {
   bool oracle = true;   ///< run the exact oracle (needed for errors and booleans' correctness)
   bool depth = false;   ///< also compute exact penetration depth of intersecting pairs
   double touching_band = 1e-10;  ///< relative to size: exact answers this close count as touching
+  /// Which queries keep a per-iteration trace in the archive: "none", "failing" (failure
+  /// class other than none) or "all". Only GJK algorithms can be traced.
+  std::string trace = "none";
   bool timing = false;
   int repetitions = 5;  ///< timed repetitions per query; the median is recorded
   std::vector<FamilySpec> families;

@@ -14,6 +14,7 @@
 
 #include "gjklab/geometry/types.hpp"
 #include "gjklab/gjk/termination.hpp"
+#include "gjklab/gjk/trace.hpp"
 
 namespace gjklab::experiment {
 
@@ -131,6 +132,9 @@ struct CaseResult {
   std::optional<ExactRecord> exact;         ///< absent when the oracle is off
   std::vector<AlgorithmRecord> algorithms;  ///< in the experiment's algorithm order
   std::optional<CaseGeometry> geometry;     ///< present for failing or degenerate cases
+  /// Per-iteration traces, one list per algorithm (same order), filled by the trace mode of
+  /// the experiment; empty lists for untraced queries and algorithms that cannot be traced.
+  std::vector<std::vector<GjkIterationTrace>> traces;
 };
 
 std::string_view to_string(Placement p);
