@@ -111,7 +111,9 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
     bool all_equal = true, any = false;
     for (std::size_t k = 0; k < h.algorithm_names.size(); ++k) {
       const std::string& label = h.algorithm_names[k];
-      const std::string name = label.substr(0, label.find('@'));
+      std::string name = label.substr(0, label.find('@'));
+      for (const auto& [key, value] : h.algorithm_options[k])
+        if (key == "algorithm") name = value;
       if (!args.algorithm.empty() && args.algorithm != label && args.algorithm != name) continue;
       any = true;
       const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);

@@ -174,6 +174,7 @@ AlgorithmSpec spec_from_description(const std::string& name,
   spec.name = name;
   spec.label = name;
   for (const auto& [key, value] : text) {
+    if (key == "algorithm") continue;  // the registry name, archived with the options
     try {
       set_option(spec, key, value);
     } catch (const std::invalid_argument& e) {

@@ -540,7 +540,7 @@ AlgorithmSpec read_algorithm(const Section& s) {
            "and is configured by [oracle] (enabled, depth); valid: " + join(valid));
   if (!info) s.fail(name_node, "name", "unknown algorithm '" + *name + "'; valid: " + join(valid));
 
-  std::vector<std::string_view> allowed = {"name", "max_iterations"};
+  std::vector<std::string_view> allowed = {"name", "label", "max_iterations"};
   for (std::string_view key : own_option_keys(*name)) allowed.push_back(key);
   s.allow_only(allowed, [&](std::string_view key) {
     std::vector<std::string_view> owners;
@@ -556,6 +556,12 @@ AlgorithmSpec read_algorithm(const Section& s) {
   AlgorithmSpec spec;
   spec.name = *name;
   spec.label = *name;
+  if (const auto label = s.string("label")) {
+    // The result group's name: lets one algorithm run twice with different options.
+    if (label->empty() || label->find('/') != std::string::npos || label->find('@') != std::string::npos)
+      s.fail(*s.find("label"), "label", "must be non-empty and contain neither '/' nor '@'");
+    spec.label = *label;
+  }
   if (const toml::node* n = s.find("max_iterations"))
     s.integer_value(*n, "max_iterations", 1, std::numeric_limits<int>::max());
   for (std::string_view key : option_keys(*name)) {
@@ -731,10 +737,10 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     AlgorithmSpec spec = read_algorithm(s);
     spec.options.oracle.depth = config.depth;
     for (std::size_t j = 0; j < config.algorithms.size(); ++j)
-      if (config.algorithms[j].name == spec.name)
-        s.fail(*s.find("name"), "name",
-               "algorithm '" + spec.name + "' is already listed as algorithm[" +
-                   std::to_string(j) + "]; list each algorithm once");
+      if (config.algorithms[j].label == spec.label)
+        s.fail(*s.find(s.find("label") ? "label" : "name"), s.find("label") ? "label" : "name",
+               "'" + spec.label + "' is already used by algorithm[" + std::to_string(j) +
+                   "]; give the second one its own label = \"...\"");
     config.algorithms.push_back(std::move(spec));
   }
   if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);

@@ -138,7 +138,10 @@ ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases
   h.family_names = config.result_family_names();
   for (const AlgorithmSpec& a : config.algorithms) {
     h.algorithm_names.push_back(a.label);
-    h.algorithm_options.push_back(describe_options(a));
+    // The registry name first: a label need not contain it.
+    auto options = describe_options(a);
+    options.insert(options.begin(), {"algorithm", a.name});
+    h.algorithm_options.push_back(std::move(options));
   }
   h.oracle = config.oracle;
   h.touching_band = config.touching_band;

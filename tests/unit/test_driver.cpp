@@ -153,6 +153,18 @@ TEST_CASE("gjklab run: smoke run, existing output, inspect", "[smoke][driver]") 
   REQUIRE(run({"run", experiment.string(), "--out", out.string(), "--cases", "5", "--force"}) == 0);
   CHECK(read_archive(out).results.size() == 5);
 
+  // Replay reruns an archived case (geometry regenerated from the archived experiment when
+  // it was not kept) with the archived options, and finds the same answers.
+  REQUIRE(run({"replay", out.string(), "--case", "3", "--trace"}, &text) == 0);
+  CHECK_THAT(text, Catch::Contains("gjk-johnson: intersect"));
+  CHECK_THAT(text, Catch::Contains("equals the archived result"));
+  CHECK_THAT(text, Catch::Contains("it 1 "));
+  CHECK_THAT(text, Catch::Contains("libccd-mpr is not traceable"));
+  REQUIRE(run({"replay", out.string(), "--case", "99"}, &text) == 1);
+  CHECK_THAT(text, Catch::Contains("no case 99"));
+  REQUIRE(run({"replay", out.string(), "--case", "1", "--algorithm", "nope"}, &text) == 1);
+  CHECK_THAT(text, Catch::Contains("no algorithm 'nope'"));
+
   REQUIRE(run({"inspect", out.string()}, &text) == 0);
   CHECK_THAT(text, Catch::Contains("complete"));
   CHECK_THAT(text, Catch::Contains("cgal_version"));

@@ -374,7 +374,7 @@ TEST_CASE("contradictions and duplicates are reported", "[unit][config]") {
                         Contains("already used by family[0]"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + kAlgorithm),
                     Contains("exp.toml:12:") && Contains("key 'algorithm[1].name'") &&
-                        Contains("already listed"));
+                        Contains("already used by algorithm[0]"));
   CHECK_THROWS_WITH(parse(kHead + "[oracle]\nenabled = false\ndepth = true\n" + kFamily +
                           kAlgorithm),
                     Contains("exp.toml:6:") && Contains("key 'oracle.depth'"));
