@@ -182,14 +182,14 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       result.algorithms.back().time_ns =
           time_query(algorithm, a, b, spec.options, config.repetitions);
   }
-  // A converged boolean that disagrees with an intersecting exact answer may be inside the
-  // touching band; only the exact depth can tell, so compute it now if it was not asked for.
-  // (A query stopped early, e.g. by its step limit, fails by its termination anyway; its
-  // disagreement alone does not pay for the depth, the costliest exact computation.)
+  // A boolean that disagrees with an intersecting exact answer may be inside the touching
+  // band; only the exact depth can tell, so compute it now if it was not asked for. (A query
+  // stopped by its step limit fails by its termination anyway: its disagreement alone does
+  // not pay for the depth, the costliest exact computation, in step-limit sweeps.)
   if (answer && answer->intersect && !answer->depth) {
     const bool disagreement =
         std::any_of(result.algorithms.begin(), result.algorithms.end(), [](const AlgorithmRecord& r) {
-          return !r.intersect && r.termination == Termination::converged;
+          return !r.intersect && r.termination != Termination::step_limit;
         });
     if (disagreement) {
       answer = exact::solve(a.vertices(), b.vertices(), {.depth = true});

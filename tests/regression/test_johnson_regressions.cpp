@@ -3,6 +3,7 @@
 
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
+#include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 
@@ -23,7 +24,9 @@ TEST_CASE("johnson flat tetrahedron near contact: 102 sphere points vs 9, gap 0.
   // At iteration 7 the new support point is coplanar with the triangle closest to the origin
   // (duality gap 2e-12 of ‖v‖²). The flat tetrahedron's cofactors are rounding noise, all
   // positive, so Johnson's tests accept it and GJK claimed contact — although an earlier
-  // support point had already proved separation (v·w > 0).
+  // support point had already proved separation (v·w > 0). The driver now continues from the
+  // flat tetrahedron's nearest face, which does not improve ‖v‖: a no-progress stop with the
+  // right answer.
   const auto c = load_case("johnson_flat_tetrahedron_near_contact.jsonl");
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
@@ -31,5 +34,26 @@ TEST_CASE("johnson flat tetrahedron near contact: 102 sphere points vs 9, gap 0.
   const auto r = gjk_distance(a, b);
   CHECK_FALSE(r.intersect);
   CHECK(std::abs(r.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
-  CHECK(r.termination == Termination::degenerate_simplex);
+  CHECK(r.termination == Termination::no_progress);
+}
+
+TEST_CASE("contact pair separated by 5.6e-14: tetrahedron holds the origin only by rounding",
+          "[regression]") {
+  // An edge-face contact family case (degeneracy study, case 2830), 5.6e-14 apart. The first
+  // support point proves separation; at iteration 4 every GJK distance variant's sub-algorithm
+  // accepted a tetrahedron around the origin, and the driver stopped with the previous bound
+  // 0.316 (relative error 0.1). Continuing from the nearest face gives the exact distance.
+  const auto c = load_case("contact_eps_5e-14_flat_tetrahedron_after_separation.jsonl");
+  const Polytope a(c.a), b(c.b);
+  const auto exact = exact::solve(a.vertices(), b.vertices());
+  REQUIRE_FALSE(exact.intersect);
+  REQUIRE(exact.distance < 1e-13);
+  for (const auto& algorithm : experiment::algorithms()) {
+    if (algorithm.kind != experiment::AnswerKind::distance) continue;
+    INFO(algorithm.name);
+    const auto o = algorithm.run(a, b, {});
+    CHECK_FALSE(o.intersect);
+    CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
+    CHECK(o.termination == Termination::converged);
+  }
 }

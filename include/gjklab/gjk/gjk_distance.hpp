@@ -83,6 +83,29 @@ SimplexVertex minkowski_support(const A& a, const B& b, const Vec3& d) {
   return v;
 }
 
+/// After a separation certificate, a full simplex that seems to hold the origin holds it only
+/// through rounding: the origin is outside A − B, hence outside the simplex, whose closest
+/// point therefore lies on one of its four faces. Reduces `simplex` to the face whose closest
+/// point (by the sub-algorithm) is nearest the origin; false, leaving it untouched, when no face
+/// can be decided.
+template <class Sub>
+bool reduce_to_closest_face(const Sub& sub, Simplex& simplex, ClosestOnSimplex& out) {
+  const Simplex full = simplex;
+  bool found = false;
+  for (int drop = 0; drop < full.size(); ++drop) {
+    Simplex face = full;
+    face.keep(static_cast<std::uint8_t>(0xF & ~(1u << drop)));
+    ClosestOnSimplex c;
+    if (!sub.reduce(face, c) || !c.v.allFinite()) continue;
+    if (!found || c.v.squaredNorm() < out.v.squaredNorm()) {
+      simplex = face;
+      out = c;
+      found = true;
+    }
+  }
+  return found;
+}
+
 }  // namespace detail
 
 /// Relative error bound of a rounded 3-vector dot product, |fl(x·y) − x·y| ≤ 3u‖x‖‖y‖ with
@@ -236,15 +259,16 @@ DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions
       trace(-v, next, vv, vw, GjkStep::non_finite);
       return finish(Termination::numerical_failure, false);
     }
-    if (reduced.full() || in_contact(candidate.v, reduced)) {
-      if (separation_proven) {
-        trace(-v, next, vv, vw, GjkStep::degenerate);
-        return finish(Termination::degenerate_simplex, false);
-      }
+    if ((reduced.full() || in_contact(candidate.v, reduced)) && !separation_proven) {
       simplex = reduced;
       best = candidate;
       trace(-v, next, vv, vw, GjkStep::contact);
       return finish(Termination::converged, true);
+    }
+    // Contact contradicts the separation certificate: continue from the nearest face.
+    if (reduced.full() && !detail::reduce_to_closest_face(sub, reduced, candidate)) {
+      trace(-v, next, vv, vw, GjkStep::degenerate);
+      return finish(Termination::degenerate_simplex, false);
     }
     // The upper bound ‖v‖ must decrease strictly; when rounding stops it, keep the old v.
     if (!(candidate.v.squaredNorm() < vv)) {

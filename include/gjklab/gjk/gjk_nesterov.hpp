@@ -159,15 +159,16 @@ DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOption
       trace(-d, next, vv, vw, GjkStep::non_finite);
       return finish(Termination::numerical_failure, false);
     }
-    if (reduced.full() || in_contact(candidate.v, reduced)) {
-      if (separation_proven) {
-        trace(-d, next, vv, vw, GjkStep::degenerate);
-        return finish(Termination::degenerate_simplex, false);
-      }
+    if ((reduced.full() || in_contact(candidate.v, reduced)) && !separation_proven) {
       simplex = reduced;
       best = candidate;
       trace(-d, next, vv, vw, GjkStep::contact);
       return finish(Termination::converged, true);
+    }
+    // Contact contradicts the separation certificate: continue from the nearest face.
+    if (reduced.full() && !detail::reduce_to_closest_face(sub, reduced, candidate)) {
+      trace(-d, next, vv, vw, GjkStep::degenerate);
+      return finish(Termination::degenerate_simplex, false);
     }
     if (!(candidate.v.squaredNorm() < vv)) {
       if (accelerated) {
