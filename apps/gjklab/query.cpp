@@ -28,6 +28,8 @@ std::string answer_line(const std::string& id, const AlgorithmInfo& algorithm,
   j["algorithm"] = algorithm.name;
   j["intersect"] = o.intersect;
   if (o.distance) j["distance"] = *o.distance;
+  if (o.depth) j["depth"] = *o.depth;
+  if (o.normal) j["normal"] = {o.normal->x(), o.normal->y(), o.normal->z()};
   j["iterations"] = o.iterations;
   j["support_calls"] = o.support_calls;
   j["termination"] = to_string(o.termination);
@@ -37,7 +39,6 @@ std::string answer_line(const std::string& id, const AlgorithmInfo& algorithm,
     j["hull_vertices_a"] = o.exact->hull_vertices_a;
     j["hull_vertices_b"] = o.exact->hull_vertices_b;
     if (o.exact->depth_squared) {
-      j["depth"] = *o.exact->depth;
       j["depth2_num"] = o.exact->depth_squared->numerator;
       j["depth2_den"] = o.exact->depth_squared->denominator;
     }

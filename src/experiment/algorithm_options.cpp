@@ -12,6 +12,7 @@ namespace gjklab::experiment {
 namespace {
 
 bool is_libccd(std::string_view a) { return a == "libccd-gjk" || a == "libccd-mpr"; }
+bool is_libccd_depth(std::string_view a) { return a == "libccd-gjk-epa" || a == "libccd-mpr-depth"; }
 
 /// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
 bool uses_distance_options(std::string_view a) {
@@ -120,6 +121,11 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
     return keys;
   }
   if (is_libccd(algorithm)) return {"max_iterations", "mpr_tolerance"};
+  if (is_libccd_depth(algorithm))
+    return {"max_iterations", "max_depth_iterations", "mpr_tolerance", "epa_tolerance"};
+  if (algorithm == "epa")
+    return {"max_iterations", "max_faces", "epa_relative_gap", "relative_noise",
+            "gjk_max_iterations"};
   return {};
 }
 
@@ -137,14 +143,22 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
   } else if (n == "gjk-nesterov") {
     if (key == "normalize_direction") o.gjk_nesterov.normalize_direction = boolean(text);
     else set_distance_option(o.gjk_nesterov, key, text);
-  } else if (is_libccd(n)) {
+  } else if (is_libccd(n) || is_libccd_depth(n)) {
     if (key == "max_iterations") {
       o.libccd.max_iterations = iterations(key, text);
+    } else if (key == "max_depth_iterations") {
+      o.libccd.max_depth_iterations = iterations(key, text);
     } else {
       const double v = number(key, text);
       if (!(v > 0)) throw std::invalid_argument("must be > 0, got " + round_trip(v));
-      o.libccd.mpr_tolerance = v;
+      (key == "mpr_tolerance" ? o.libccd.mpr_tolerance : o.libccd.epa_tolerance) = v;
     }
+  } else if (n == "epa") {
+    if (key == "max_iterations") o.epa.max_iterations = iterations(key, text);
+    else if (key == "max_faces") o.epa.max_faces = iterations(key, text);
+    else if (key == "gjk_max_iterations") o.gjk_distance.max_iterations = iterations(key, text);
+    else if (key == "epa_relative_gap") o.epa.relative_gap = non_negative(key, text);
+    else o.epa.relative_noise = non_negative(key, text);
   }
 }
 
@@ -164,6 +178,17 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
   if (is_libccd(n))
     return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
             {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
+  if (is_libccd_depth(n))
+    return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
+            {"max_depth_iterations", std::to_string(o.libccd.max_depth_iterations)},
+            {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)},
+            {"epa_tolerance", round_trip(o.libccd.epa_tolerance)}};
+  if (n == "epa")
+    return {{"max_iterations", std::to_string(o.epa.max_iterations)},
+            {"max_faces", std::to_string(o.epa.max_faces)},
+            {"epa_relative_gap", round_trip(o.epa.relative_gap)},
+            {"relative_noise", round_trip(o.epa.relative_noise)},
+            {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)}};
   if (n == "exact") return {{"depth", o.oracle.depth ? "true" : "false"}};
   return {};
 }

@@ -1,11 +1,23 @@
 #include "gjklab/experiment/algorithms.hpp"
 
+#include <algorithm>
 #include <array>
+#include <memory>
+#include <vector>
 
+#include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/gjk_nesterov.hpp"
 #include "gjklab/gjk/subalgorithms.hpp"
+#include "gjklab/exact/hull_features.hpp"
+#include "gjklab/peers/sat.hpp"
+#ifdef GJKLAB_HAVE_FCL
+#include "gjklab/peers/fcl.hpp"
+#endif
+#ifdef GJKLAB_HAVE_BULLET
+#include "gjklab/peers/bullet.hpp"
+#endif
 
 namespace gjklab::experiment {
 
@@ -14,6 +26,13 @@ void AlgorithmOptions::set_max_iterations(int n) {
   gjk_distance.max_iterations = n;
   gjk_nesterov.max_iterations = n;
   libccd.max_iterations = n;
+  libccd.max_depth_iterations = n;
+  epa.max_iterations = n;
+  epa.max_faces = 4 + 2 * std::min(n, 1 << 24);
+#ifdef GJKLAB_HAVE_FCL
+  fcl.max_iterations = n;
+  fcl.epa_max_iterations = n;
+#endif
 }
 
 namespace {
@@ -97,10 +116,156 @@ Outcome run_exact(const Polytope& a, const Polytope& b, const AlgorithmOptions& 
   exact::OracleAnswer answer = exact::solve(a.vertices(), b.vertices(), o.oracle);
   out.intersect = answer.intersect;
   out.distance = answer.distance;
+  out.depth = answer.depth;
   out.exact = std::move(answer);
   return out;
 }
 
+/// A penetration answer: distance and closest points for separated pairs, depth and normal
+/// (and the deepest points, when the algorithm reports them) for intersecting ones.
+Outcome from_penetration(const PenetrationResult& r, bool deepest_points) {
+  Outcome o;
+  o.intersect = r.intersect;
+  o.distance = r.intersect ? 0.0 : r.distance;
+  if (r.intersect) {
+    o.depth = r.depth;
+    o.normal = r.normal;
+  }
+  if (!r.intersect || deepest_points) {
+    o.witness_a = r.witness_a;
+    o.witness_b = r.witness_b;
+  }
+  o.iterations = r.iterations;
+  o.support_calls = r.support_calls;
+  o.termination = r.termination;
+  return o;
+}
+
+Outcome run_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  thread_local EpaWorkspace workspace;  // buffers reused across queries on this thread
+  const EpaResult r = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
+  Outcome out = from_penetration(r, true);
+  out.iterations = r.gjk_iterations + r.iterations;  // GJK's, then EPA's
+  return out;
+}
+
+Outcome from_libccd_penetration(const peers::LibccdPenetration& r) {
+  Outcome o;
+  o.intersect = r.intersect;
+  if (r.intersect) {
+    o.depth = r.depth;
+    o.normal = r.normal;
+  }
+  o.iterations = r.iterations;
+  o.support_calls = r.support_calls;
+  o.termination = r.termination;
+  return o;
+}
+
+Outcome run_libccd_gjk_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_libccd_penetration(peers::libccd_gjk_penetration(a, b, o.libccd));
+}
+
+Outcome run_libccd_mpr_depth(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_libccd_penetration(peers::libccd_mpr_penetration(a, b, o.libccd));
+}
+
+// Shapes prepared for an algorithm (exact hull features, a library's own shape object) are
+// built once per cloud and thread and reused: the cache key is the cloud's content, compared
+// exactly, so a query on the same cloud reuses the preparation and any other cloud gets its
+// own. The experiment driver runs every algorithm once before timing it, so the preparation
+// stays out of the timed repetitions (a comparison of the cloud with the cached copy remains,
+// a linear scan).
+template <class Prepared, class Make>
+std::shared_ptr<const Prepared> prepared(const Polytope& shape, Make&& make) {
+  struct Entry {
+    std::vector<Vec3> cloud;
+    std::shared_ptr<const Prepared> prepared;
+  };
+  constexpr std::size_t kEntries = 4;
+  thread_local std::array<Entry, kEntries> cache;
+  thread_local std::size_t next = 0;
+  const auto cloud = shape.vertices();
+  for (const Entry& e : cache)
+    if (e.prepared && std::equal(e.cloud.begin(), e.cloud.end(), cloud.begin(), cloud.end()))
+      return e.prepared;
+  Entry& e = cache[next];
+  next = (next + 1) % kEntries;
+  e.prepared = make(shape);
+  e.cloud.assign(cloud.begin(), cloud.end());
+  return e.prepared;
+}
+
+/// The exact hull features of a cloud (shared by SAT and FCL).
+std::shared_ptr<const exact::HullFeatures> hull_of(const Polytope& shape) {
+  return prepared<exact::HullFeatures>(shape, [](const Polytope& p) {
+    return std::make_shared<const exact::HullFeatures>(exact::hull_features(p.vertices()));
+  });
+}
+
+std::shared_ptr<const peers::SatShape> sat_shape(const Polytope& shape) {
+  return prepared<peers::SatShape>(shape, [](const Polytope& p) {
+    return std::make_shared<const peers::SatShape>(*hull_of(p));
+  });
+}
+
+Outcome run_sat(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  const auto sa = sat_shape(a);
+  const auto sb = sat_shape(b);
+  const peers::SatResult r = peers::sat_query(*sa, *sb, o.sat);
+  Outcome out;
+  out.intersect = r.intersect;
+  if (r.intersect) {
+    out.depth = r.depth;
+    out.normal = r.normal;
+  }
+  out.iterations = r.axes_tested;
+  out.support_calls = r.support_calls;
+  out.termination = r.termination;
+  return out;
+}
+
+#ifdef GJKLAB_HAVE_FCL
+std::shared_ptr<const peers::FclShape> fcl_shape(const Polytope& shape) {
+  return prepared<peers::FclShape>(shape, [](const Polytope& p) {
+    return std::make_shared<const peers::FclShape>(*hull_of(p));
+  });
+}
+
+Outcome run_fcl(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
+                peers::FclSolver solver) {
+  const auto fa = fcl_shape(a);
+  const auto fb = fcl_shape(b);
+  return from_penetration(peers::fcl_query(*fa, *fb, solver, o.fcl), false);
+}
+Outcome run_fcl_libccd(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return run_fcl(a, b, o, peers::FclSolver::libccd);
+}
+Outcome run_fcl_indep(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return run_fcl(a, b, o, peers::FclSolver::indep);
+}
+#endif
+
+#ifdef GJKLAB_HAVE_BULLET
+std::shared_ptr<const peers::BulletShape> bullet_shape(const Polytope& shape) {
+  return prepared<peers::BulletShape>(shape, [](const Polytope& p) {
+    return std::make_shared<const peers::BulletShape>(p);
+  });
+}
+
+Outcome run_bullet_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
+  const auto ba = bullet_shape(a);
+  const auto bb = bullet_shape(b);
+  return from_penetration(peers::bullet_gjk_query(*ba, *bb), true);
+}
+Outcome run_bullet_epa2(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
+  const auto ba = bullet_shape(a);
+  const auto bb = bullet_shape(b);
+  return from_penetration(peers::bullet_epa2_query(*ba, *bb), true);
+}
+#endif
+
+// The optional peers (FCL, Bullet) are listed only when they were built.
 constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
                   "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
@@ -108,8 +273,10 @@ constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-johnson", AnswerKind::distance,
                   "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson,
                   trace_gjk_johnson},
-    AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk},
-    AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr},
+    AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk,
+                  nullptr, true},
+    AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr,
+                  nullptr, true},
     AlgorithmInfo{"gjk-johnson-backup", AnswerKind::distance,
                   "GJK distance with Johnson's sub-algorithm and van den Bergen's backup "
                   "procedure",
@@ -123,8 +290,37 @@ constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-nesterov", AnswerKind::distance,
                   "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
                   run_gjk_nesterov, trace_gjk_nesterov},
+    AlgorithmInfo{"epa", AnswerKind::distance,
+                  "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
+                  run_epa, nullptr, false, true},
+    AlgorithmInfo{"sat", AnswerKind::boolean,
+                  "separating axis test on exact hull features (face normals, edge cross "
+                  "products) with the minimum-overlap depth",
+                  run_sat, nullptr, false, true},
+    AlgorithmInfo{"libccd-gjk-epa", AnswerKind::boolean,
+                  "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
+                  run_libccd_gjk_epa, nullptr, true, true},
+    AlgorithmInfo{"libccd-mpr-depth", AnswerKind::boolean, "libccd's ccdMPRPenetration",
+                  run_libccd_mpr_depth, nullptr, true, true},
+#ifdef GJKLAB_HAVE_FCL
+    AlgorithmInfo{"fcl-libccd", AnswerKind::distance,
+                  "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)",
+                  run_fcl_libccd, nullptr, true, true},
+    AlgorithmInfo{"fcl-indep", AnswerKind::distance,
+                  "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)",
+                  run_fcl_indep, nullptr, true, true},
+#endif
+#ifdef GJKLAB_HAVE_BULLET
+    AlgorithmInfo{"bullet-gjk", AnswerKind::distance,
+                  "Bullet's btGjkPairDetector (Voronoi simplex solver, GJK-EPA penetration), "
+                  "margins 0",
+                  run_bullet_gjk, nullptr, true, true},
+    AlgorithmInfo{"bullet-epa2", AnswerKind::distance,
+                  "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0",
+                  run_bullet_epa2, nullptr, true, true},
+#endif
     AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",
-                  run_exact},
+                  run_exact, nullptr, false, true},
 };
 
 }  // namespace

@@ -17,12 +17,24 @@
 //    pass (a pass that finds the origin inside the portal returns before evaluating one). Both
 //    keep all their state in stack variables of plain C types and allocate nothing, so leaving
 //    them from inside a support callback with longjmp skips no cleanup.
+//  * ccdGJKPenetration runs the same GJK, then turns its simplex into a polytope (simplex of
+//    four points: no support evaluation, or two if the origin lies on a face; three points: two;
+//    two points: at most ccd_points_on_sphere_len + 3) and expands it in an unbounded loop
+//    (EPA). Each pass takes the polytope element nearest to the origin (its nearest point p,
+//    squared distance ‖p‖²); unless that element is a vertex or ‖p‖² is zero it evaluates one
+//    support point w in direction p and stops when w·p − ‖p‖² < epa_tolerance, or when w is
+//    within squared distance epa_tolerance of the element; otherwise it adds w. The polytope
+//    lives on the heap (freed before returning), so that loop must end by its own test.
+//  * ccdMPRPenetration runs MPR's portal discovery and refinement and then an expansion
+//    towards the depth; none of them allocates.
 #include <ccd/ccd.h>
+#include <ccd/vec3.h>
 
 #include <algorithm>
 #include <cmath>
 #include <csetjmp>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <type_traits>
 
@@ -54,6 +66,18 @@ struct Query {
   double support_a[3] = {0, 0, 0};
   /// Whether the latest Minkowski point v satisfied v·d < 0, libccd's GJK separation test.
   bool last_point_separating = false;
+  /// GJK+EPA penetration: when the budget is spent, answer the origin for both shapes (which
+  /// ends libccd's EPA loop) instead of leaving by longjmp.
+  bool soft_budget = false;
+  bool budget_hit = false;
+  /// Soft mode only: a non-finite direction or support point was answered with the origin.
+  bool non_finite_seen = false;
+  int origins_served_for_non_finite = 0;
+  bool serving_origin = false;  ///< support_a answered the origin; support_b must too
+  /// Outputs of the penetration entry points.
+  ccd_real_t depth = 0;
+  ccd_vec3_t dir{};
+  ccd_vec3_t pos{};
   std::jmp_buf escape;
 };
 
@@ -96,10 +120,28 @@ bool evaluate_center(const Polytope& shape, double (&out)[3]) noexcept {
 // frames a longjmp skips are these callbacks (scalars only) and libccd's own C frames.
 extern "C" {
 
+// In soft mode a non-finite direction is answered with the origin too, which ends libccd's EPA
+// when its nearest face is finite; should libccd keep asking, the query leaves by longjmp.
+constexpr int kOriginsForNonFinite = 4;
+
+static void serve_origin(Query& q, ccd_vec3_t* out) {
+  q.serving_origin = true;
+  out->v[0] = out->v[1] = out->v[2] = 0;
+}
+
 static void gjklab_ccd_support_a(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   Query& q = query_of(obj);
-  if (q.evaluations >= q.support_budget) std::longjmp(q.escape, kBudgetExhausted);
-  if (!all_finite(dir->v)) std::longjmp(q.escape, kNonFinite);
+  if (q.evaluations >= q.support_budget) {
+    if (!q.soft_budget) std::longjmp(q.escape, kBudgetExhausted);
+    q.budget_hit = true;
+    return serve_origin(q, out);
+  }
+  if (!all_finite(dir->v) || q.non_finite_seen) {
+    if (!q.soft_budget || ++q.origins_served_for_non_finite > kOriginsForNonFinite)
+      std::longjmp(q.escape, kNonFinite);
+    q.non_finite_seen = true;
+    return serve_origin(q, out);
+  }
   std::copy(dir->v, dir->v + 3, q.direction);
   if (!evaluate_support(*q.a, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
   std::copy(out->v, out->v + 3, q.support_a);
@@ -107,6 +149,12 @@ static void gjklab_ccd_support_a(const void* obj, const ccd_vec3_t* dir, ccd_vec
 
 static void gjklab_ccd_support_b(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   Query& q = query_of(obj);
+  if (q.serving_origin) {
+    q.serving_origin = false;
+    q.last_point_separating = false;
+    out->v[0] = out->v[1] = out->v[2] = 0;
+    return;
+  }
   if (!all_finite(dir->v)) std::longjmp(q.escape, kNonFinite);
   if (!evaluate_support(*q.b, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
   ++q.evaluations;
@@ -156,6 +204,15 @@ void validate(const LibccdOptions& options) {
     throw std::invalid_argument("libccd: max_iterations must be in [0, INT_MAX - 2]");
   if (!std::isfinite(options.mpr_tolerance) || options.mpr_tolerance < 0)
     throw std::invalid_argument("libccd: mpr_tolerance must be finite and non-negative");
+  if (!std::isfinite(options.epa_tolerance) || options.epa_tolerance < 0)
+    throw std::invalid_argument("libccd: epa_tolerance must be finite and non-negative");
+  // Keeps every penetration budget (see libccd.hpp) representable in an int.
+  if (options.max_depth_iterations < 0 ||
+      options.max_depth_iterations > std::numeric_limits<int>::max() / 2 ||
+      options.max_iterations > std::numeric_limits<int>::max() / 2 - 1000)
+    throw std::invalid_argument(
+        "libccd: max_depth_iterations must be in [0, INT_MAX / 2] and max_iterations below "
+        "INT_MAX / 2 - 1000 for the penetration queries");
 }
 
 ccd_t make_ccd(const LibccdOptions& options) {
@@ -166,7 +223,7 @@ ccd_t make_ccd(const LibccdOptions& options) {
   ccd.center1 = gjklab_ccd_center_a;
   ccd.center2 = gjklab_ccd_center_b;
   ccd.max_iterations = static_cast<unsigned long>(options.max_iterations);
-  ccd.epa_tolerance = LibccdDefaults::epa_tolerance;
+  ccd.epa_tolerance = options.epa_tolerance;
   ccd.mpr_tolerance = options.mpr_tolerance;
   ccd.dist_tolerance = LibccdDefaults::dist_tolerance;
   return ccd;
@@ -243,6 +300,108 @@ BooleanResult libccd_mpr_intersect(const Polytope& a, const Polytope& b,
   BooleanResult result = run_query(ccdMPRIntersect, a, b, ccd, max_evaluations, escape, q);
   result.iterations = std::max(result.support_calls - 2, 0);
   return result;
+}
+
+namespace {
+
+int gjk_penetration_entry(const void* obj1, const void* obj2, const ccd_t* ccd) {
+  Query& q = query_of(obj1);
+  return ccdGJKPenetration(obj1, obj2, ccd, &q.depth, &q.dir, &q.pos);
+}
+
+int mpr_penetration_entry(const void* obj1, const void* obj2, const ccd_t* ccd) {
+  Query& q = query_of(obj1);
+  return ccdMPRPenetration(obj1, obj2, ccd, &q.depth, &q.dir, &q.pos);
+}
+
+Vec3 to_vec(const ccd_vec3_t& v) {
+  return {v.v[0], v.v[1], v.v[2]};
+}
+
+/// Fills the answer of a penetration query that libccd reported as intersecting; non-finite
+/// parts are replaced (depth 0, normal (1, 0, 0), position 0) and reported as a numerical
+/// failure.
+void fill_contact(const Query& q, LibccdPenetration& r) {
+  r.intersect = true;
+  const Vec3 dir = to_vec(q.dir), pos = to_vec(q.pos);
+  const double n = dir.norm();
+  const bool finite = std::isfinite(q.depth) && pos.allFinite() && std::isfinite(n);
+  if (std::isfinite(q.depth)) r.depth = q.depth;
+  if (pos.allFinite()) r.position = pos;
+  if (n > 0 && std::isfinite(n)) r.normal = dir / n;
+  if (!finite) r.termination = Termination::numerical_failure;
+}
+
+}  // namespace
+
+long libccd_gjk_penetration_budget(const LibccdOptions& options) {
+  // GJK's own bound, the polytope set-up's worst case, then the EPA loop's share.
+  return options.max_iterations + 1L + static_cast<long>(ccd_points_on_sphere_len) + 3 +
+         options.max_depth_iterations;
+}
+
+LibccdPenetration libccd_gjk_penetration(const Polytope& a, const Polytope& b,
+                                         const LibccdOptions& options) {
+  validate(options);
+  const ccd_t ccd = make_ccd(options);
+  const long gjk_evaluations = options.max_iterations + 1L;
+  Query q;
+  q.a = &a;
+  q.b = &b;
+  q.soft_budget = true;
+  q.support_budget = libccd_gjk_penetration_budget(options);
+  int answer = 0;
+  const Escape escape = run_guarded(gjk_penetration_entry, &ccd, &q, &answer);
+
+  LibccdPenetration r;
+  if (escape != kNoEscape) {
+    r.termination = Termination::numerical_failure;  // the soft budget never escapes
+  } else if (answer == -2) {
+    throw std::bad_alloc();
+  } else if (q.non_finite_seen) {
+    r.intersect = answer == 0;  // libccd's answer, computed after a non-finite value
+    r.termination = Termination::numerical_failure;
+  } else if (answer == 0) {
+    fill_contact(q, r);
+    if (r.termination == Termination::converged && q.budget_hit)
+      r.termination = Termination::step_limit;
+  } else {
+    // Separated, or GJK's loop ran out (see libccd_gjk_intersect).
+    r.termination = q.evaluations == gjk_evaluations && !q.last_point_separating
+                        ? Termination::step_limit
+                        : Termination::converged;
+  }
+  r.support_calls = static_cast<int>(q.evaluations);
+  r.iterations = std::max(r.support_calls - 1, 0);
+  return r;
+}
+
+LibccdPenetration libccd_mpr_penetration(const Polytope& a, const Polytope& b,
+                                         const LibccdOptions& options) {
+  validate(options);
+  const ccd_t ccd = make_ccd(options);
+  Query q;
+  q.a = &a;
+  q.b = &b;
+  q.support_budget = options.max_iterations + 2L + options.max_depth_iterations;
+  int answer = 0;
+  const Escape escape = run_guarded(mpr_penetration_entry, &ccd, &q, &answer);
+
+  LibccdPenetration r;
+  switch (escape) {
+    case kNoEscape:
+      if (answer == 0) fill_contact(q, r);
+      break;
+    case kBudgetExhausted:
+      r.termination = Termination::step_limit;  // undetermined: intersect stays false
+      break;
+    case kNonFinite:
+      r.termination = Termination::numerical_failure;
+      break;
+  }
+  r.support_calls = static_cast<int>(q.evaluations);
+  r.iterations = std::max(r.support_calls - 2, 0);
+  return r;
 }
 
 }  // namespace gjklab::peers

@@ -12,10 +12,15 @@
 
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
+#include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/trace.hpp"
 #include "gjklab/peers/libccd.hpp"
+#include "gjklab/peers/sat.hpp"
+#ifdef GJKLAB_HAVE_FCL
+#include "gjklab/peers/fcl.hpp"
+#endif
 
 namespace gjklab::experiment {
 
@@ -25,9 +30,16 @@ struct AlgorithmOptions {
   GjkDistanceOptions gjk_distance;  ///< gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi
   GjkNesterovOptions gjk_nesterov;  ///< gjk-nesterov
   peers::LibccdOptions libccd;
+  EpaOptions epa;  ///< `epa` (its GJK phase uses gjk_distance)
+  peers::SatOptions sat;
+#ifdef GJKLAB_HAVE_FCL
+  peers::FclOptions fcl;
+#endif
   exact::OracleOptions oracle;
 
-  /// Sets the iteration bound of every iterative algorithm at once.
+  /// Sets the iteration bound of every iterative algorithm at once (libccd's penetration
+  /// queries: also max_depth_iterations; epa: also max_faces = 4 + 2n, so that the face buffer
+  /// does not bind before the iteration bound; Bullet's bounds are fixed at compile time).
   void set_max_iterations(int n);
 };
 
@@ -35,6 +47,14 @@ struct AlgorithmOptions {
 struct Outcome {
   bool intersect = false;
   std::optional<double> distance;  ///< absent for boolean-only algorithms
+  /// Penetration depth of intersecting pairs, for algorithms that compute one (0 when they
+  /// report only touching); absent otherwise.
+  std::optional<double> depth;
+  /// With depth: the unit direction in which B must move by depth to separate the shapes
+  /// (PenetrationResult's convention).
+  std::optional<Vec3> normal;
+  /// Closest points of separated pairs; for penetration algorithms that report them, the
+  /// deepest points of intersecting pairs (witness_a − witness_b = depth·normal).
   std::optional<Vec3> witness_a, witness_b;
   int iterations = 0;
   int support_calls = 0;
@@ -53,6 +73,11 @@ struct AlgorithmInfo {
   /// cannot be traced (peers, the oracle).
   Outcome (*run_traced)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options,
                         TraceRecorder& trace) = nullptr;
+  /// A third-party library behind an adapter (libccd, FCL, Bullet): its disagreements with
+  /// the exact oracle are counted and reported, not treated as gjklab bugs.
+  bool peer = false;
+  /// Reports a penetration depth for intersecting pairs (Outcome::depth).
+  bool depth = false;
 };
 
 /// Every registered algorithm, in a fixed order (the default order of outputs).

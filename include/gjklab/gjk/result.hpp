@@ -32,4 +32,28 @@ struct DistanceResult {
   Termination termination = Termination::converged;
 };
 
+/// Answer of a penetration-depth query (EPA and the depth peers).
+///
+/// Conventions. The depth is the distance from the origin to the boundary of A − B, i.e. the
+/// length of the shortest translation that separates the shapes (0 when they only touch or
+/// when A − B has no interior). `normal` is the unit direction of that translation applied to
+/// B: moving B by depth·normal (or A by −depth·normal) brings the shapes into touching
+/// contact, so for a shallow overlap it points from A towards B. For separated pairs the
+/// same convention gives normal = (witness_b − witness_a) / distance.
+struct PenetrationResult {
+  bool intersect = false;  ///< closed shapes share a point (touching counts as intersecting)
+  /// Distance when separated (the GJK distance for EPA); 0 when intersecting.
+  double distance = 0;
+  /// Penetration depth (length units) when intersecting; 0 when separated.
+  double depth = 0;
+  Vec3 normal = Vec3::UnitX();    ///< unit vector, see above; never NaN
+  /// Intersecting: the deepest points, witness_a − witness_b = depth·normal.
+  /// Separated: the closest points, witness_b − witness_a = distance·normal.
+  Vec3 witness_a = Vec3::Zero();
+  Vec3 witness_b = Vec3::Zero();
+  int iterations = 0;     ///< main-loop iterations of the depth phase (see each algorithm)
+  int support_calls = 0;  ///< Minkowski support evaluations of the whole query
+  Termination termination = Termination::converged;
+};
+
 }  // namespace gjklab

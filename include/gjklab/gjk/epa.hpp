@@ -1,0 +1,602 @@
+// Penetration depth with the expanding polytope algorithm (EPA; van den Bergen 2001), started
+// from the final simplex of GJK.
+//
+// When GJK (gjk_distance) reports an intersection, its final simplex holds the origin. EPA
+// first blows that simplex up to a tetrahedron inside A − B (searching support points off the
+// simplex's line or plane when it has fewer than four points or is flat; the origin may end
+// up on the tetrahedron's boundary), then repeats:
+//   take the face f of the polytope closest to the origin (distance d_f, outward unit normal
+//   n_f); evaluate w = s_{A−B}(n_f); stop when n_f·w − d_f is within tolerance; otherwise
+//   remove every face that w sees (flood fill from f) and connect the horizon to w.
+// Every face plane of the polytope is at least as far from the origin as the boundary of the
+// polytope, and the polytope lies inside A − B, so min_f d_f is a lower bound of the depth;
+// n_f·w = h_{A−B}(n_f) is an upper bound. The answer is the closest face: depth = max(d_f, 0),
+// normal = n_f, witnesses from the barycentric coordinates of d_f·n_f in that face.
+//
+// Bounds and memory. The loop makes at most max_iterations support evaluations, and the
+// polytope never has more than max_faces faces. Each query reserves its buffers once, before
+// the loop (vertices: 4 + max_iterations; faces: max_faces; horizon: 3·max_faces edges), so
+// nothing in the loop allocates; pass an EpaWorkspace to reuse the buffers across queries.
+// A closed triangulated polytope with V vertices has 2V − 4 faces, so after k expansions it
+// has at most 4 + 2k faces: with max_faces ≥ 4 + 2·max_iterations the face buffer never binds.
+//
+// Termination. EPA's own stop reasons (EpaStop, kept in EpaResult::stop) map onto gjklab's
+// Termination as follows:
+//   EpaStop                Termination          answer
+//   converged              converged            the closest face
+//   repeated_support       converged            the closest face (w is already a vertex: in
+//                                               exact arithmetic its gap would be 0)
+//   flat_difference        converged            depth 0 (A − B has no interior, up to
+//                                               relative_noise), GJK's contact witnesses
+//   separated              GJK's (converged)    no overlap: GJK's distance and witnesses
+//   gjk_failed             GJK's termination    GJK stopped without an answer; EPA not run
+//   degenerate_polytope    degenerate_simplex   the closest face before the failed step
+//   out_of_faces           step_limit           the closest face before the step
+//   step_limit             step_limit           the closest face after max_iterations steps
+//   non_finite             numerical_failure    the closest face before the step
+// Visibility counts a face as seen by w when w lies in front of its plane or on it up to
+// relative_noise·R (see EpaOptions).
+// "degenerate_polytope" covers an expansion whose horizon is not one simple loop, a new face
+// with no normal, and a new face plane closer to the origin than the current lower bound by
+// more than the noise level (each means rounding has made the polytope non-convex); the
+// polytope is left untouched and the last consistent answer is returned.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/gjk_distance.hpp"
+#include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/simplex.hpp"
+
+namespace gjklab {
+
+struct EpaDefaults {
+  /// Concentric round shapes are EPA's worst case (every face about equally near): two
+  /// concentric 482-point UV spheres need 378 steps, offset ones 30 to 140.
+  static constexpr int max_iterations = 256;
+  static constexpr int max_faces = 4 + 2 * max_iterations;
+  static constexpr double relative_gap = 1e-12;
+  static constexpr double relative_noise = 1e-13;
+};
+
+/// Options of `epa` (the GJK phase before it has its own GjkDistanceOptions).
+struct EpaOptions {
+  /// Upper bound on expansion steps, each costing one support evaluation (≥ 0). The few
+  /// support evaluations that blow up a small GJK simplex (at most 12, from a single point)
+  /// are not counted.
+  int max_iterations = EpaDefaults::max_iterations;
+  /// Capacity of the face buffer (≥ 4). An expansion that would need more faces stops the
+  /// query with EpaStop::out_of_faces.
+  int max_faces = EpaDefaults::max_faces;
+  /// Relative to the depth, not squared (dimensionless): converged when the upper bound
+  /// n_f·w and the lower bound d_f of the closest face f satisfy n_f·w − d_f ≤ relative_gap·d_f,
+  /// so the reported depth d_f is within a factor (1 − relative_gap) of the true one.
+  double relative_gap = EpaDefaults::relative_gap;
+  /// Relative to the polytope's radius R = max ‖w_i‖ over the support points seen, not squared:
+  /// lengths up to relative_noise·R are rounding noise. It is the absolute floor of the gap test
+  /// (n_f·w − d_f ≤ relative_noise·R also converges, which ends touching contacts), the
+  /// threshold for "off the line/plane" when blowing up a small simplex (A − B thinner than
+  /// that is reported flat, depth 0), the distance within which a support point counts as on
+  /// a face's plane (so that face is replaced), and the slack allowed for a new face plane
+  /// closer to the origin than the current lower bound.
+  double relative_noise = EpaDefaults::relative_noise;
+};
+
+/// Why EPA stopped (see the mapping onto Termination in the header comment).
+enum class EpaStop : std::uint8_t {
+  converged,
+  repeated_support,
+  flat_difference,
+  separated,
+  gjk_failed,
+  degenerate_polytope,
+  out_of_faces,
+  step_limit,
+  non_finite,
+};
+
+constexpr std::string_view to_string(EpaStop s) {
+  switch (s) {
+    case EpaStop::converged: return "converged";
+    case EpaStop::repeated_support: return "repeated_support";
+    case EpaStop::flat_difference: return "flat_difference";
+    case EpaStop::separated: return "separated";
+    case EpaStop::gjk_failed: return "gjk_failed";
+    case EpaStop::degenerate_polytope: return "degenerate_polytope";
+    case EpaStop::out_of_faces: return "out_of_faces";
+    case EpaStop::step_limit: return "step_limit";
+    case EpaStop::non_finite: return "non_finite";
+  }
+  return "unknown";
+}
+
+/// The Termination an EPA stop reports when EPA ran (separated and gjk_failed report GJK's).
+constexpr Termination to_termination(EpaStop s) {
+  switch (s) {
+    case EpaStop::converged:
+    case EpaStop::repeated_support:
+    case EpaStop::flat_difference:
+    case EpaStop::separated: return Termination::converged;
+    case EpaStop::degenerate_polytope: return Termination::degenerate_simplex;
+    case EpaStop::out_of_faces:
+    case EpaStop::step_limit: return Termination::step_limit;
+    case EpaStop::non_finite: return Termination::numerical_failure;
+    case EpaStop::gjk_failed: break;
+  }
+  return Termination::invalid_input;  // gjk_failed carries GJK's termination instead
+}
+
+/// The answer of `epa`. `iterations` counts EPA's expansion steps only; GJK's are in
+/// gjk_iterations, and support_calls counts both phases and the blow-up.
+struct EpaResult : PenetrationResult {
+  EpaStop stop = EpaStop::converged;
+  int gjk_iterations = 0;
+  /// Smallest support value n_f·w seen (an upper bound of the depth; +∞ if no step was made).
+  double depth_upper_bound = std::numeric_limits<double>::infinity();
+  int faces = 0;  ///< faces of the final polytope (0 when EPA did not build one)
+};
+
+/// Buffers of one EPA query, reusable across queries (one per thread).
+class EpaWorkspace {
+ public:
+  struct Face {
+    std::array<int, 3> v{};    ///< vertex indices, counter-clockwise seen from outside
+    std::array<int, 3> adj{};  ///< adj[i]: the face across edge (v[i], v[i+1 mod 3])
+    std::array<std::int8_t, 3> adj_edge{};  ///< which edge of adj[i] is that edge
+    Vec3 normal = Vec3::Zero();             ///< outward unit normal
+    double distance = 0;                    ///< normal·v[0]: signed distance of the plane
+    int visible_stamp = -1;                 ///< step in which the face was found visible
+    bool alive = false;
+  };
+  struct HorizonEdge {
+    int from = 0, to = 0;        ///< vertex indices, in the orientation of the removed face
+    int outside_face = 0;        ///< the kept face across the edge
+    std::int8_t outside_edge = 0;
+    int next = -1, prev = -1;    ///< neighbouring horizon edges along the loop
+    int new_face = -1;
+    Vec3 normal = Vec3::Zero();
+    double distance = 0;
+  };
+
+  /// Empties the buffers and makes sure they hold a query with these options.
+  void prepare(const EpaOptions& options) {
+    const std::size_t max_vertices = 4 + static_cast<std::size_t>(options.max_iterations);
+    const std::size_t max_faces = static_cast<std::size_t>(options.max_faces);
+    vertices.clear();
+    vertices.reserve(max_vertices);
+    faces.clear();
+    faces.reserve(max_faces);
+    free_faces.clear();
+    free_faces.reserve(max_faces);
+    stack.clear();
+    stack.reserve(max_faces);
+    horizon.clear();
+    horizon.reserve(3 * max_faces);
+    edge_from.assign(max_vertices, -1);
+  }
+
+  std::vector<SimplexVertex> vertices;
+  std::vector<Face> faces;
+  std::vector<int> free_faces;
+  std::vector<int> stack;
+  std::vector<HorizonEdge> horizon;
+  std::vector<int> edge_from;  ///< per vertex: the horizon edge starting there, or −1
+};
+
+namespace detail {
+
+inline void validate(const EpaOptions& o) {
+  if (o.max_iterations < 0 || o.max_iterations > (1 << 24))
+    throw std::invalid_argument("epa: max_iterations must be in [0, 2^24]");
+  if (o.max_faces < 4 || o.max_faces > (1 << 26))
+    throw std::invalid_argument("epa: max_faces must be in [4, 2^26]");
+  if (!(o.relative_gap >= 0) || !std::isfinite(o.relative_gap))
+    throw std::invalid_argument("epa: relative_gap must be finite and non-negative");
+  if (!(o.relative_noise >= 0) || !std::isfinite(o.relative_noise))
+    throw std::invalid_argument("epa: relative_noise must be finite and non-negative");
+}
+
+/// Barycentric coordinates of the orthogonal projection of x onto the plane of (p0, p1, p2);
+/// false if the triangle has no area.
+inline bool barycentric(const Vec3& x, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        std::array<double, 3>& out) {
+  const Vec3 n = (p1 - p0).cross(p2 - p0);
+  const double nn = n.squaredNorm();
+  if (!(nn > 0) || !std::isfinite(nn)) return false;
+  out[0] = n.dot((p1 - x).cross(p2 - x)) / nn;
+  out[1] = n.dot((p2 - x).cross(p0 - x)) / nn;
+  out[2] = 1.0 - out[0] - out[1];
+  return true;
+}
+
+/// A vector orthogonal to e (unit length; e ≠ 0).
+inline Vec3 any_orthogonal(const Vec3& e) {
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(e[i]) < std::abs(e[axis])) axis = i;
+  return e.cross(Vec3::Unit(axis)).normalized();
+}
+
+}  // namespace detail
+
+/// EPA on the pair after GJK: `gjk` must be gjk_distance's answer for the same pair (its
+/// final simplex starts the expansion). Separated pairs and GJK failures pass GJK's answer
+/// through (see EpaStop). Throws std::invalid_argument if the options are invalid.
+template <SupportMap A, SupportMap B>
+EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
+                       const EpaOptions& options, EpaWorkspace& ws) {
+  detail::validate(options);
+  using Face = EpaWorkspace::Face;
+  using HorizonEdge = EpaWorkspace::HorizonEdge;
+
+  EpaResult out;
+  out.gjk_iterations = gjk.iterations;
+  out.support_calls = gjk.support_calls;
+  out.witness_a = gjk.witness_a;
+  out.witness_b = gjk.witness_b;
+
+  if (!gjk.intersect) {
+    out.intersect = false;
+    out.distance = gjk.distance;
+    const Vec3 ab = gjk.witness_b - gjk.witness_a;
+    const double n = ab.norm();
+    if (n > 0 && std::isfinite(n)) out.normal = ab / n;
+    out.termination = gjk.termination;
+    out.stop = gjk.termination == Termination::converged ? EpaStop::separated : EpaStop::gjk_failed;
+    return out;
+  }
+  out.intersect = true;
+  out.distance = 0;
+
+  auto support = [&](const Vec3& d) {
+    ++out.support_calls;
+    return detail::minkowski_support(a, b, d);
+  };
+  auto finish = [&](EpaStop stop) -> EpaResult& {
+    out.stop = stop;
+    out.termination = to_termination(stop);
+    return out;
+  };
+  // A − B has no interior (up to the noise level): depth 0 at GJK's contact point.
+  auto flat = [&](const Vec3& normal) -> EpaResult& {
+    out.depth = 0;
+    out.normal = normal;
+    return finish(EpaStop::flat_difference);
+  };
+
+  // ---- the GJK simplex, without duplicates ----
+  std::array<SimplexVertex, 4> p;
+  int k = 0;
+  double radius = 0;  // R = max ‖w_i‖ over the points seen
+  for (int i = 0; i < gjk.simplex.size(); ++i) {
+    const SimplexVertex& s = gjk.simplex[i];
+    bool seen = false;
+    for (int j = 0; j < k; ++j) seen = seen || p[j].w == s.w;
+    if (seen) continue;
+    p[k++] = s;
+    radius = std::max(radius, s.w.norm());
+  }
+  if (k == 0) return finish(EpaStop::degenerate_polytope);
+  auto noise = [&] { return options.relative_noise * radius; };
+  auto take = [&](const SimplexVertex& s) {
+    if (!s.w.allFinite()) return false;
+    radius = std::max(radius, s.w.norm());
+    return true;
+  };
+
+  // ---- reduce a flat tetrahedron / collinear triangle / coincident segment ----
+  if (k == 4) {
+    const Vec3 e1 = p[1].w - p[0].w, e2 = p[2].w - p[0].w, e3 = p[3].w - p[0].w;
+    const double volume6 = e1.dot(e2.cross(e3));
+    static constexpr std::array<std::array<int, 3>, 4> kTriangles = {
+        {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
+    double largest_face = 0;
+    for (const auto& t : kTriangles)
+      largest_face = std::max(
+          largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
+    // The smallest height of the tetrahedron is |volume6| / largest_face.
+    if (!(std::abs(volume6) > noise() * largest_face)) {
+      // Flat: the origin lies in the planar hull of the four points, so in one of the four
+      // triangles; keep the one that holds it best.
+      int best = 0;
+      double best_score = -std::numeric_limits<double>::infinity();
+      for (int t = 0; t < 4; ++t) {
+        std::array<double, 3> l;
+        const auto& tri = kTriangles[t];
+        if (!detail::barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l))
+          continue;
+        const double score = std::min({l[0], l[1], l[2]});
+        if (score > best_score) {
+          best_score = score;
+          best = t;
+        }
+      }
+      const auto tri = kTriangles[best];
+      p = {p[tri[0]], p[tri[1]], p[tri[2]], SimplexVertex{}};
+      k = 3;
+    }
+  }
+  if (k == 3) {
+    const double twice_area = (p[1].w - p[0].w).cross(p[2].w - p[0].w).norm();
+    int longest = 0;  // edge (longest, longest + 1 mod 3)
+    double length = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double l = (p[(i + 1) % 3].w - p[i].w).norm();
+      if (l > length) {
+        length = l;
+        longest = i;
+      }
+    }
+    // Height on the longest edge within the noise: collinear; the longest edge covers the
+    // other point, hence the origin.
+    if (!(twice_area > noise() * length)) {
+      p = {p[longest], p[(longest + 1) % 3], SimplexVertex{}, SimplexVertex{}};
+      k = 2;
+    }
+  }
+  if (k == 2 && !((p[1].w - p[0].w).norm() > noise())) k = 1;
+
+  // ---- blow up to a tetrahedron holding the origin (possibly on its boundary) ----
+  if (k == 1) {
+    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                                      Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+    for (const Vec3& d : axes) {
+      const SimplexVertex s = support(d);
+      if (!take(s)) return finish(EpaStop::non_finite);
+      if ((s.w - p[0].w).norm() > noise()) {
+        p[k++] = s;
+        break;
+      }
+    }
+    if (k == 1) return flat(Vec3::UnitX());  // A − B is a point
+  }
+  if (k == 2) {
+    const Vec3 e = p[1].w - p[0].w;
+    const Vec3 u = detail::any_orthogonal(e);
+    const Vec3 v = e.cross(u).normalized();
+    const double e_norm = e.norm();
+    const std::array<Vec3, 4> directions = {u, -u, v, -v};
+    for (const Vec3& d : directions) {
+      const SimplexVertex s = support(d);
+      if (!take(s)) return finish(EpaStop::non_finite);
+      if ((s.w - p[0].w).cross(e).norm() / e_norm > noise()) {
+        p[k++] = s;
+        break;
+      }
+    }
+    if (k == 2) return flat(u);  // A − B is a segment
+  }
+  if (k == 3) {
+    const Vec3 m = (p[1].w - p[0].w).cross(p[2].w - p[0].w).normalized();
+    const SimplexVertex above = support(m);
+    if (!take(above)) return finish(EpaStop::non_finite);
+    const SimplexVertex below = support(-m);
+    if (!take(below)) return finish(EpaStop::non_finite);
+    const double h_above = m.dot(above.w - p[0].w), h_below = -m.dot(below.w - p[0].w);
+    if (!(std::max(h_above, h_below) > noise())) return flat(m);  // A − B is flat
+    // One apex only: the tetrahedron is convex whatever the apexes' positions (a double
+    // pyramid need not be). The origin then lies on its base, which EPA expands first.
+    p[3] = h_above >= h_below ? above : below;
+    k = 4;
+  }
+
+  // ---- the initial tetrahedron ----
+  ws.prepare(options);
+  auto& vertices = ws.vertices;
+  auto& faces = ws.faces;
+  for (int i = 0; i < 4; ++i) vertices.push_back(p[i]);
+
+  // Normal and plane distance of the triangle (i, j, l); false if it has no normal.
+  auto plane = [&](int i, int j, int l, Vec3& normal, double& distance) {
+    const Vec3& pi = vertices[i].w;
+    const Vec3 n = (vertices[j].w - pi).cross(vertices[l].w - pi);
+    const double len = n.norm();
+    if (!(len > 0) || !std::isfinite(len)) return false;
+    normal = n / len;
+    distance = normal.dot(pi);
+    return std::isfinite(distance);
+  };
+  auto allocate_face = [&]() -> int {
+    if (!ws.free_faces.empty()) {
+      const int f = ws.free_faces.back();
+      ws.free_faces.pop_back();
+      return f;
+    }
+    faces.emplace_back();  // within the reserved capacity (checked by the callers)
+    return static_cast<int>(faces.size()) - 1;
+  };
+  int alive = 0;
+
+  {
+    const Vec3 centroid = 0.25 * (p[0].w + p[1].w + p[2].w + p[3].w);
+    std::array<std::array<int, 3>, 4> tri = {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}};
+    for (auto& t : tri) {
+      const Vec3& p0 = vertices[t[0]].w;
+      const Vec3 n = (vertices[t[1]].w - p0).cross(vertices[t[2]].w - p0);
+      if (n.dot(centroid - p0) > 0) std::swap(t[1], t[2]);  // make the normal point outward
+    }
+    for (const auto& t : tri) {
+      const int f = allocate_face();
+      Face& face = faces[f];
+      face.v = t;
+      face.alive = true;
+      if (!plane(t[0], t[1], t[2], face.normal, face.distance))
+        return finish(EpaStop::degenerate_polytope);
+      ++alive;
+    }
+    // Adjacency: the face across edge (x, y) is the one holding the edge (y, x).
+    for (int f = 0; f < 4; ++f)
+      for (int e = 0; e < 3; ++e) {
+        const int x = faces[f].v[e], y = faces[f].v[(e + 1) % 3];
+        for (int g = 0; g < 4; ++g)
+          for (int h = 0; h < 3; ++h)
+            if (faces[g].v[h] == y && faces[g].v[(h + 1) % 3] == x) {
+              faces[f].adj[e] = g;
+              faces[f].adj_edge[e] = static_cast<std::int8_t>(h);
+            }
+      }
+  }
+
+  // ---- expansion ----
+  int closest = 0;
+  auto answer = [&](EpaStop stop) -> EpaResult& {
+    const Face& f = faces[closest];
+    out.depth = std::max(f.distance, 0.0);
+    out.normal = f.normal;
+    const Vec3 x = f.distance * f.normal;
+    std::array<double, 3> l;
+    const SimplexVertex &v0 = vertices[f.v[0]], &v1 = vertices[f.v[1]], &v2 = vertices[f.v[2]];
+    if (detail::barycentric(x, v0.w, v1.w, v2.w, l)) {
+      out.witness_a = l[0] * v0.a + l[1] * v1.a + l[2] * v2.a;
+      out.witness_b = l[0] * v0.b + l[1] * v1.b + l[2] * v2.b;
+    }
+    out.faces = alive;
+    return finish(stop);
+  };
+
+  for (int step = 0;; ++step) {
+    closest = -1;
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      if (faces[f].alive && (closest < 0 || faces[f].distance < faces[closest].distance))
+        closest = f;
+    const Vec3 n = faces[closest].normal;
+    const double lower = faces[closest].distance;
+
+    if (out.iterations >= options.max_iterations) return answer(EpaStop::step_limit);
+    ++out.iterations;
+    const SimplexVertex w = support(n);
+    if (!take(w)) return answer(EpaStop::non_finite);
+    const double upper = n.dot(w.w);
+    out.depth_upper_bound = std::min(out.depth_upper_bound, upper);
+    const double gap = upper - lower;
+    if (gap <= options.relative_gap * lower || gap <= noise()) return answer(EpaStop::converged);
+    for (const SimplexVertex& v : vertices)
+      if (v.w == w.w) return answer(EpaStop::repeated_support);
+
+    // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise).
+    // A face whose plane holds w up to the noise level counts as seen: removing it keeps the
+    // polytope convex, drops vertices that are not extreme (support points of A − B on a face
+    // of A − B, which ties produce), and never leaves w on the line of a horizon edge, which
+    // would make a new face without area.
+    const double plane_slack = noise();
+    auto sees = [&](const Face& f) { return f.normal.dot(w.w) - f.distance >= -plane_slack; };
+    ws.stack.clear();
+    ws.horizon.clear();
+    ws.stack.push_back(closest);
+    faces[closest].visible_stamp = step;
+    int visible = 0;
+    while (!ws.stack.empty()) {
+      const int f = ws.stack.back();
+      ws.stack.pop_back();
+      ++visible;
+      for (int e = 0; e < 3; ++e) {
+        const int g = faces[f].adj[e];
+        if (faces[g].visible_stamp == step) continue;
+        if (sees(faces[g])) {
+          faces[g].visible_stamp = step;
+          ws.stack.push_back(g);
+        } else {
+          HorizonEdge h;
+          h.from = faces[f].v[e];
+          h.to = faces[f].v[(e + 1) % 3];
+          h.outside_face = g;
+          h.outside_edge = faces[f].adj_edge[e];
+          ws.horizon.push_back(h);
+        }
+      }
+    }
+    auto& horizon = ws.horizon;
+    const int h_count = static_cast<int>(horizon.size());
+    if (vertices.size() >= ws.edge_from.size() || alive - visible + h_count > options.max_faces)
+      return answer(EpaStop::out_of_faces);
+
+    // The horizon must be one simple loop (a visible region that is a disc); otherwise
+    // rounding has made the visibility inconsistent and the expansion would break the mesh.
+    bool simple = h_count >= 3;
+    for (int i = 0; i < h_count && simple; ++i) {
+      int& slot = ws.edge_from[horizon[i].from];
+      if (slot >= 0) simple = false;
+      slot = i;
+    }
+    if (simple) {
+      for (int i = 0; i < h_count && simple; ++i) {
+        const int next = ws.edge_from[horizon[i].to];
+        if (next < 0) simple = false;
+        else {
+          horizon[i].next = next;
+          horizon[next].prev = i;
+        }
+      }
+      int length = 0;
+      for (int i = 0; simple && length <= h_count;) {
+        i = horizon[i].next;
+        ++length;
+        if (i == 0) break;
+      }
+      simple = simple && length == h_count;
+    }
+    for (const HorizonEdge& h : horizon) ws.edge_from[h.from] = -1;
+    if (!simple) return answer(EpaStop::degenerate_polytope);
+
+    // New faces (from, to, w): check them all before changing the polytope.
+    const int wi = static_cast<int>(vertices.size());
+    vertices.push_back(w);
+    bool consistent = true;
+    for (HorizonEdge& h : horizon) {
+      consistent = consistent && plane(h.from, h.to, wi, h.normal, h.distance) &&
+                   h.distance >= lower - noise();
+    }
+    if (!consistent) {
+      vertices.pop_back();
+      return answer(EpaStop::degenerate_polytope);
+    }
+
+    // Remove the visible faces (they are exactly those stamped in this step) and add the cone.
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      if (faces[f].alive && faces[f].visible_stamp == step) {
+        faces[f].alive = false;
+        ws.free_faces.push_back(f);
+      }
+    alive -= visible;
+    for (HorizonEdge& h : horizon) h.new_face = allocate_face();
+    for (const HorizonEdge& h : horizon) {
+      Face& f = faces[h.new_face];
+      f.v = {h.from, h.to, wi};
+      f.normal = h.normal;
+      f.distance = h.distance;
+      f.alive = true;
+      f.visible_stamp = -1;
+      f.adj = {h.outside_face, horizon[h.next].new_face, horizon[h.prev].new_face};
+      f.adj_edge = {h.outside_edge, 2, 1};
+      faces[h.outside_face].adj[h.outside_edge] = h.new_face;
+      faces[h.outside_face].adj_edge[h.outside_edge] = 0;
+    }
+    alive += h_count;
+  }
+}
+
+/// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect.
+template <SupportMap A, SupportMap B>
+EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
+                  const EpaOptions& options, EpaWorkspace& ws) {
+  detail::validate(options);
+  return epa_from_gjk(a, b, gjk_distance(a, b, gjk_options), options, ws);
+}
+
+template <SupportMap A, SupportMap B>
+EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options = {},
+                  const EpaOptions& options = {}) {
+  EpaWorkspace ws;
+  return gjk_epa(a, b, gjk_options, options, ws);
+}
+
+}  // namespace gjklab

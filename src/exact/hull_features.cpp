@@ -1,0 +1,227 @@
+// Exact hull features: the extreme points come from hull_summary (hull.cpp); a full-dimensional
+// set of extreme points is hulled again with CGAL::convex_hull_3 (Epick: exact predicates on
+// the input doubles), which then has no vertex inside a facet or on an edge, and adjacent
+// triangles whose four corners are coplanar (an exact predicate) are merged into one face by
+// union-find. Normals and edge vectors are formed from the input doubles in GMP rationals
+// (CGAL::Gmpq), so they are exact until the final canonical rounding (see hull_features.hpp).
+#include "gjklab/exact/hull_features.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpq.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "gjklab/geometry/polytope.hpp"
+#include "hull.hpp"
+
+namespace gjklab::exact {
+
+namespace {
+
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Q = CGAL::Gmpq;
+
+struct QVec {
+  Q x, y, z;
+};
+
+QVec exact(const Vec3& v) {
+  return {Q(v.x()), Q(v.y()), Q(v.z())};  // a double converts to Gmpq exactly
+}
+QVec operator-(const QVec& a, const QVec& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+QVec cross(const QVec& a, const QVec& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+QVec negated(const QVec& a) {
+  return {-a.x, -a.y, -a.z};
+}
+Q abs_of(const Q& q) {
+  return q < 0 ? Q(-q) : q;
+}
+
+/// v divided exactly by `divisor`, rounded componentwise, then normalised in double. The
+/// quotient's components lie in [−1, 1] with one of them ±1, so the normalisation cannot
+/// overflow or lose the vector to underflow.
+Vec3 round_and_normalise(const QVec& v, const Q& divisor) {
+  const Vec3 r((v.x / divisor).to_double(), (v.y / divisor).to_double(),
+               (v.z / divisor).to_double());
+  return r / r.norm();
+}
+
+/// Index of the component of largest magnitude (the first one on ties).
+int largest_component(const QVec& v) {
+  const Q ax = abs_of(v.x), ay = abs_of(v.y), az = abs_of(v.z);
+  if (ax >= ay && ax >= az) return 0;
+  return ay >= az ? 1 : 2;
+}
+const Q& component(const QVec& v, int i) {
+  return i == 0 ? v.x : (i == 1 ? v.y : v.z);
+}
+
+/// A normal keeps its orientation: divided by its largest absolute component.
+Vec3 canonical_normal(const QVec& n) {
+  return round_and_normalise(n, abs_of(component(n, largest_component(n))));
+}
+/// A direction loses its sign: divided by its largest component, which becomes +1.
+Vec3 canonical_direction(const QVec& d) {
+  return round_and_normalise(d, component(d, largest_component(d)));
+}
+
+bool lex_less(const Vec3& a, const Vec3& b) {
+  if (a.x() != b.x()) return a.x() < b.x();
+  if (a.y() != b.y()) return a.y() < b.y();
+  return a.z() < b.z();
+}
+
+/// Sorts and removes bitwise duplicates.
+void unique_directions(std::vector<Vec3>& d) {
+  std::sort(d.begin(), d.end(), lex_less);
+  d.erase(std::unique(d.begin(), d.end()), d.end());
+}
+
+void flat_features(HullFeatures& out) {
+  const std::vector<Vec3>& p = out.vertices;  // the polygon's corners, in cyclic order
+  const int n = static_cast<int>(p.size());
+  // Corners are strictly convex, so any three consecutive ones give the loop's orientation.
+  const QVec q0 = exact(p[0]);
+  const QVec m = cross(exact(p[1]) - q0, exact(p[2]) - q0);
+  out.face_normals.push_back(canonical_normal(m));
+  out.face_normals.push_back(canonical_normal(negated(m)));
+  std::vector<int> loop(n);
+  std::iota(loop.begin(), loop.end(), 0);
+  out.faces.push_back(loop);
+  std::reverse(loop.begin(), loop.end());
+  out.faces.push_back(loop);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const QVec e = exact(p[j]) - exact(p[i]);
+    out.face_normals.push_back(canonical_normal(cross(e, m)));  // in-plane, outward
+    out.edge_directions.push_back(canonical_direction(e));
+    out.edges.push_back({i, j});
+  }
+  unique_directions(out.edge_directions);
+}
+
+void solid_features(HullFeatures& out) {
+  using Mesh = CGAL::Surface_mesh<Epick::Point_3>;
+  std::vector<Epick::Point_3> points;
+  points.reserve(out.vertices.size());
+  for (const Vec3& v : out.vertices) points.emplace_back(v.x(), v.y(), v.z());
+  Mesh mesh;
+  CGAL::convex_hull_3(points.begin(), points.end(), mesh);
+
+  // Every input point is extreme, so the hull's vertices are exactly the input points.
+  out.vertices.clear();
+  std::vector<int> index(mesh.number_of_vertices(), -1);
+  for (Mesh::Vertex_index v : mesh.vertices()) {
+    const Epick::Point_3& p = mesh.point(v);
+    index[v.idx()] = static_cast<int>(out.vertices.size());
+    out.vertices.emplace_back(p.x(), p.y(), p.z());
+  }
+  auto vertex_of = [&](Mesh::Vertex_index v) { return index[v.idx()]; };
+
+  // Union-find of triangles that share an edge and lie in one plane.
+  std::vector<int> parent(mesh.number_of_faces());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  for (Mesh::Edge_index e : mesh.edges()) {
+    const Mesh::Halfedge_index h = mesh.halfedge(e), o = mesh.opposite(h);
+    const auto& p = mesh.point(mesh.source(h));
+    const auto& q = mesh.point(mesh.target(h));
+    const auto& r = mesh.point(mesh.target(mesh.next(h)));
+    const auto& s = mesh.point(mesh.target(mesh.next(o)));
+    if (CGAL::coplanar(p, q, r, s)) {
+      const int a = find(static_cast<int>(mesh.face(h).idx()));
+      const int b = find(static_cast<int>(mesh.face(o).idx()));
+      parent[a] = b;
+    }
+  }
+  auto group = [&](Mesh::Halfedge_index h) { return find(static_cast<int>(mesh.face(h).idx())); };
+
+  // One face per group: its normal from any of its triangles, its boundary loop by walking the
+  // halfedges whose opposite lies in another group.
+  std::vector<bool> done(parent.size(), false);
+  const std::size_t halfedges = mesh.number_of_halfedges();
+  for (Mesh::Face_index f : mesh.faces()) {
+    const int g = find(static_cast<int>(f.idx()));
+    if (done[g]) continue;
+    done[g] = true;
+    const Mesh::Halfedge_index h0 = mesh.halfedge(f);
+    const QVec p = exact(out.vertices[vertex_of(mesh.source(h0))]);
+    const QVec q = exact(out.vertices[vertex_of(mesh.target(h0))]);
+    const QVec r = exact(out.vertices[vertex_of(mesh.target(mesh.next(h0)))]);
+    out.face_normals.push_back(canonical_normal(cross(q - p, r - p)));
+
+    // A boundary halfedge of the group: search the group's triangles from f.
+    Mesh::Halfedge_index start = Mesh::null_halfedge();
+    for (Mesh::Face_index t : mesh.faces()) {
+      if (find(static_cast<int>(t.idx())) != g) continue;
+      for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(t), mesh))
+        if (group(mesh.opposite(h)) != g) {
+          start = h;
+          break;
+        }
+      if (start != Mesh::null_halfedge()) break;
+    }
+    if (start == Mesh::null_halfedge())
+      throw std::logic_error("hull features: a face group has no boundary");
+    std::vector<int> loop;
+    Mesh::Halfedge_index h = start;
+    do {
+      loop.push_back(vertex_of(mesh.source(h)));
+      Mesh::Halfedge_index n = mesh.next(h);
+      while (group(mesh.opposite(n)) == g) n = mesh.next(mesh.opposite(n));
+      h = n;
+      if (loop.size() > halfedges) throw std::logic_error("hull features: open face boundary");
+    } while (h != start);
+    out.faces.push_back(std::move(loop));
+  }
+
+  for (Mesh::Edge_index e : mesh.edges()) {
+    const Mesh::Halfedge_index h = mesh.halfedge(e);
+    if (group(h) == group(mesh.opposite(h))) continue;  // inside a merged face
+    const int a = vertex_of(mesh.source(h)), b = vertex_of(mesh.target(h));
+    out.edges.push_back({a, b});
+    out.edge_directions.push_back(canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
+  }
+  unique_directions(out.edge_directions);
+}
+
+}  // namespace
+
+HullFeatures hull_features(std::span<const Vec3> cloud) {
+  if (std::string problem = describe_invalid_cloud(cloud); !problem.empty())
+    throw InvalidGeometry("hull features: " + problem);
+  detail::HullSummary summary = detail::hull_summary(cloud);
+  HullFeatures out;
+  out.dimension = summary.dimension;
+  out.vertices = std::move(summary.extreme_points);
+  switch (out.dimension) {
+    case 0:
+      break;
+    case 1: {
+      out.edges.push_back({0, 1});
+      out.edge_directions.push_back(canonical_direction(exact(out.vertices[1]) - exact(out.vertices[0])));
+      break;
+    }
+    case 2:
+      flat_features(out);
+      break;
+    default:
+      solid_features(out);
+      break;
+  }
+  return out;
+}
+
+}  // namespace gjklab::exact
