@@ -234,7 +234,7 @@ TEST_CASE("unknown keys are reported with file, line and dotted key path", "[uni
   // A key of another algorithm names the algorithms it belongs to.
   CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + "mpr_tolerance = 1e-5\n"),
                     Contains("exp.toml:10:") && Contains("key 'algorithm[0].mpr_tolerance'") &&
-                        Contains("applies to libccd-gjk, libccd-mpr, not to gjk-johnson"));
+                        Contains("applies to libccd-gjk, libccd-mpr") && Contains("not to gjk-johnson"));
   CHECK_THROWS_WITH(
       parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-bool\"\nrelative_gap = 1e-9\n"),
       Contains("exp.toml:10:") && Contains("key 'algorithm[0].relative_gap'") &&
