@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <ostream>
 
+#include "gjklab/bench.hpp"
 #include "gjklab/experiment/provenance.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/run.hpp"
@@ -20,6 +21,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   auto* run_cmd = add_run_command(app, run_args);
   InspectArgs inspect_args;
   auto* inspect = add_inspect_command(app, inspect_args);
+  BenchArgs bench_args;
+  auto* bench = add_bench_command(app, bench_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -32,6 +35,7 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   if (query->parsed()) return run_query(query_args, in, out, err);
   if (run_cmd->parsed()) return run_experiment_command(run_args, out, err);
   if (inspect->parsed()) return run_inspect_command(inspect_args, out, err);
+  if (bench->parsed()) return run_bench_command(bench_args, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance()) out << name << ": " << value << "\n";
   }
