@@ -426,19 +426,28 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
   auto add = [&](const std::string& n) {
     if (!present(n)) entries.push_back(make_entry(n));
   };
+  auto any_of_kind = [&](AnswerKind kind) {
+    return std::any_of(entries.begin(), entries.end(),
+                       [&](const Entry& e) { return e.info->kind == kind; });
+  };
+  const bool any_boolean = any_of_kind(AnswerKind::boolean);
+  const bool any_distance = any_of_kind(AnswerKind::distance) || default_list;
   std::vector<std::string> peer_distances;
   if (!config.reference.empty()) {
     make_entry(config.reference);  // validates
     add(config.reference);
     report.boolean_reference = report.distance_reference = config.reference;
   } else {
-    if (find_algorithm("libccd-mpr")) {
+    if (any_boolean && find_algorithm("libccd-mpr")) {
       report.boolean_reference = "libccd-mpr";
       add("libccd-mpr");
     }
-    for (const AlgorithmInfo& a : algorithms())
-      if (a.kind == AnswerKind::distance && is_peer(a.name)) peer_distances.emplace_back(a.name);
-    if (!peer_distances.empty()) {
+    if (any_distance)
+      for (const AlgorithmInfo& a : algorithms())
+        if (a.kind == AnswerKind::distance && is_peer(a.name)) peer_distances.emplace_back(a.name);
+    if (!any_distance) {
+      // no distance algorithm: no distance reference
+    } else if (!peer_distances.empty()) {
       for (const std::string& n : peer_distances) add(n);
       report.distance_reference = "fastest peer distance";
       std::string list;
