@@ -6,13 +6,16 @@
 //           each case `configurations` random rotations and directions;
 //   random  n points on the unit sphere (n = 8, 32, …, 8192), B moved along a random axis so
 //           that the pair's extents along it are 0.1 apart (separated) or overlap by 0.1;
-//   scene   N demo shapes (N = 8, 16, …, 72) placed near one point, every pair through the
-//           narrow phase; reported as milliseconds per full pass.
+//   scene   N demo shapes (N = 8, 16, …, 72), randomly rotated, centres uniform in a ball of
+//           radius 0.5 (near one point: the shapes have size 1), every pair through the narrow
+//           phase; reported as milliseconds per full pass.
 //
 // Method. For each case, every algorithm first runs once (warm-up, and the tallies of
 // iterations and support calls), then its repetition count is set so that one batch takes
 // about `batch_seconds`. Then `samples` rounds run the batches interleaved, A B C A B C …; a
-// batch's time divided by its queries is one sample of ns per query. Reported: the median, the
+// batch's time divided by its queries is one sample of ns per query. Times are the thread's CPU
+// time (CLOCK_THREAD_CPUTIME_ID), so time spent waiting for a core on a shared machine is not
+// counted. Reported: the median, the
 // 10th and 90th percentiles, and ratios of medians measured in the same run. Hill-climbing rows
 // (name suffix "+hc") run the same algorithm on copies of the shapes with hill-climbing
 // support enabled (Polytope::enable_hill_climbing); hull adjacency is computed before timing.
