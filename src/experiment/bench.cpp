@@ -537,13 +537,13 @@ void print_table(const BenchReport& report, std::ostream& out) {
       const bool scene = suite == "scene";
       out << "\n== " << suite << (scene ? "  (time per full pass over all pairs)" : "  (time per query)")
           << "\n";
-      out << pad("case", 27) << pad("algorithm", 16) << pad("median", 11, true)
+      out << pad("case", 28) << pad("algorithm", 16) << pad("median", 11, true)
           << pad("p10", 11, true) << pad("p90", 11, true) << pad("iters", 7, true)
           << pad("supports", 9, true) << pad("x ref", 8, true) << pad("x floor", 8, true)
           << pad("x scan", 8, true) << "  reference\n";
     }
     const double scale = r.suite == "scene" ? static_cast<double>(r.queries) : 1.0;
-    out << pad(r.case_name, 27) << pad(r.algorithm + (r.via_registry ? "*" : ""), 16)
+    out << pad(r.case_name, 28) << pad(r.algorithm + (r.via_registry ? "*" : ""), 16)
         << pad(format_ns(r.ns_median * scale), 11, true) << pad(format_ns(r.ns_p10 * scale), 11, true)
         << pad(format_ns(r.ns_p90 * scale), 11, true) << pad(fixed(r.iterations_mean, 1), 7, true)
         << pad(fixed(r.support_calls_mean, 1), 9, true)
