@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <ostream>
 
+#include "gjklab/bench.hpp"
 #include "gjklab/experiment/provenance.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"
@@ -23,6 +24,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   auto* inspect = add_inspect_command(app, inspect_args);
   ReplayArgs replay_args;
   auto* replay = add_replay_command(app, replay_args);
+  BenchArgs bench_args;
+  auto* bench = add_bench_command(app, bench_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -36,6 +39,7 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   if (run_cmd->parsed()) return run_experiment_command(run_args, out, err);
   if (inspect->parsed()) return run_inspect_command(inspect_args, out, err);
   if (replay->parsed()) return run_replay_command(replay_args, out, err);
+  if (bench->parsed()) return run_bench_command(bench_args, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance()) out << name << ": " << value << "\n";
   }

@@ -343,3 +343,100 @@ std::string algorithm_names() {
 }
 
 }  // namespace gjklab::experiment
+
+// ---- benchmark loops ---------------------------------------------------------------------
+
+namespace gjklab::experiment {
+
+namespace {
+
+void tally(BenchTally& t, const BooleanResult& r) {
+  ++t.queries;
+  t.iterations += r.iterations;
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+}
+
+void tally(BenchTally& t, const DistanceResult& r) {
+  ++t.queries;
+  t.iterations += r.iterations;
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+  t.distance_sum += r.distance;
+}
+
+/// One loop shape for every algorithm: `query` is called directly (and inlined where the
+/// compiler can see it), once per pair and repetition.
+template <class Query>
+BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r)
+    for (const BenchPair& p : pairs) tally(t, query(*p.a, *p.b));
+  return t;
+}
+
+BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return gjk_intersect(a, b, o.gjk_boolean);
+  });
+}
+
+BenchTally bench_gjk_johnson(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                             int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return gjk_distance(a, b, o.gjk_distance);
+  });
+}
+
+BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                            int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_gjk_intersect(a, b, o.libccd);
+  });
+}
+
+BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                            int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_mpr_intersect(a, b, o.libccd);
+  });
+}
+
+struct NamedBenchLoop {
+  std::string_view name;
+  BenchLoop loop;
+};
+
+constexpr std::array kBenchLoops = {
+    NamedBenchLoop{"gjk-bool", bench_gjk_bool},
+    NamedBenchLoop{"gjk-johnson", bench_gjk_johnson},
+    NamedBenchLoop{"libccd-gjk", bench_libccd_gjk},
+    NamedBenchLoop{"libccd-mpr", bench_libccd_mpr},
+};
+
+}  // namespace
+
+BenchLoop find_bench_loop(std::string_view name) {
+  for (const NamedBenchLoop& l : kBenchLoops)
+    if (l.name == name) return l.loop;
+  return nullptr;
+}
+
+BenchTally run_bench_loop_via_registry(const AlgorithmInfo& algorithm,
+                                       std::span<const BenchPair> pairs,
+                                       const AlgorithmOptions& options, int repetitions) {
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r) {
+    for (const BenchPair& p : pairs) {
+      const Outcome o = algorithm.run(*p.a, *p.b, options);
+      ++t.queries;
+      t.iterations += o.iterations;
+      t.support_calls += o.support_calls;
+      t.intersections += o.intersect;
+      if (o.distance) t.distance_sum += *o.distance;
+    }
+  }
+  return t;
+}
+
+}  // namespace gjklab::experiment

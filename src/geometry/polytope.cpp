@@ -1,6 +1,10 @@
 #include "gjklab/geometry/polytope.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <sstream>
 
 namespace gjklab {
@@ -17,36 +21,300 @@ std::string describe_invalid_cloud(std::span<const Vec3> cloud) {
   return {};
 }
 
+namespace {
+
+Vec3 mean_of(std::span<const Vec3> cloud) {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& v : cloud) sum += v;
+  return sum / static_cast<double>(cloud.size());
+}
+
+// ---- the blocked scan --------------------------------------------------------------------
+//
+// Each lane l of the eight keeps the largest dot product it has seen (strictly greater wins,
+// so it keeps its first maximiser) and the block where it saw it. The answer is, among the
+// lanes holding the overall maximum, the smallest vertex index block·8 + l: the first vertex
+// of the cloud attaining the maximum. NaN dot products never compare greater, so they are
+// skipped, as in the textbook loop once its running maximum is a number.
+
+using V4d = double __attribute__((vector_size(32)));
+using V4i = std::int64_t __attribute__((vector_size(32)));
+static_assert(Polytope::kBlock == 8, "the scan handles a block as two groups of four lanes");
+
+/// Reads four doubles of a block (blocks are 64-byte aligned, so every group of four is
+/// 32-byte aligned); may_alias makes reading doubles through the vector type legal.
+using V4dLoad = double __attribute__((vector_size(32), may_alias));
+#define GJKLAB_LOAD4(p) (*reinterpret_cast<const V4dLoad*>(p))
+
+[[gnu::always_inline]] inline std::size_t scan_blocks(const Polytope::Block* blocks,
+                                                      std::size_t count, double dx, double dy,
+                                                      double dz) {
+  constexpr double lowest = -std::numeric_limits<double>::infinity();
+  const V4d vx = {dx, dx, dx, dx}, vy = {dy, dy, dy, dy}, vz = {dz, dz, dz, dz};
+  V4d m0 = {lowest, lowest, lowest, lowest}, m1 = m0;
+  V4i i0 = {0, 0, 0, 0}, i1 = i0, b = i0;
+  const V4i one = {1, 1, 1, 1};
+  for (std::size_t k = 0; k < count; ++k, b += one) {
+    const Polytope::Block& blk = blocks[k];
+    // The same operations in the same order as Eigen's Vec3::dot: (x·dx + y·dy) + z·dz.
+    const V4d d0 = (GJKLAB_LOAD4(blk.x) * vx + GJKLAB_LOAD4(blk.y) * vy) + GJKLAB_LOAD4(blk.z) * vz;
+    const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * vx + GJKLAB_LOAD4(blk.y + 4) * vy) + GJKLAB_LOAD4(blk.z + 4) * vz;
+    const V4i g0 = d0 > m0, g1 = d1 > m1;
+    m0 = g0 ? d0 : m0;
+    m1 = g1 ? d1 : m1;
+    i0 = g0 ? b : i0;
+    i1 = g1 ? b : i1;
+  }
+  double best = m0[0];
+  std::int64_t best_index = i0[0] * Polytope::kBlock;
+  for (int l = 1; l < Polytope::kBlock; ++l) {
+    const double m = l < 4 ? m0[l] : m1[l - 4];
+    const std::int64_t index = (l < 4 ? i0[l] : i1[l - 4]) * Polytope::kBlock + l;
+    if (m > best || (m == best && index < best_index)) {
+      best = m;
+      best_index = index;
+    }
+  }
+  return static_cast<std::size_t>(best_index);
+}
+
+std::size_t scan_default(const Polytope::Block* blocks, std::size_t count, double dx, double dy,
+                         double dz) {
+  return scan_blocks(blocks, count, dx, dy, dz);
+}
+
+// The same code for AVX2 (four doubles per instruction). Only "avx2" is enabled, not "fma":
+// products and sums stay separately rounded, so the answers are those of the default build.
+[[gnu::target("avx2")]] std::size_t scan_avx2(const Polytope::Block* blocks, std::size_t count,
+                                              double dx, double dy, double dz) {
+  return scan_blocks(blocks, count, dx, dy, dz);
+}
+
+using ScanFunction = std::size_t (*)(const Polytope::Block*, std::size_t, double, double, double);
+
+ScanFunction pick_scan() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") ? scan_avx2 : scan_default;
+}
+
+const ScanFunction scan = pick_scan();
+
+#undef GJKLAB_LOAD4
+
+}  // namespace
+
 Polytope::Polytope(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
   if (std::string problem = describe_invalid_cloud(vertices_); !problem.empty())
     throw InvalidGeometry(problem);
+  mean_ = mean_of(vertices_);
+  build_blocks();
 }
 
-std::size_t Polytope::support_index(const Vec3& d) const {
-  std::size_t best = 0;
-  double best_dot = vertices_[0].dot(d);
-  for (std::size_t i = 1; i < vertices_.size(); ++i) {
-    const double dot = vertices_[i].dot(d);
-    if (dot > best_dot) {
-      best_dot = dot;
-      best = i;
+Polytope::Polytope(const Polytope& other)
+    : vertices_(other.vertices_),
+      blocks_(other.blocks_),
+      mean_(other.mean_),
+      graph_(other.graph_),
+      start_table_(other.start_table_),
+      table_resolution_(other.table_resolution_),
+      hint_(other.hint_.load(std::memory_order_relaxed)) {}
+
+Polytope& Polytope::operator=(const Polytope& other) {
+  if (this != &other) {
+    vertices_ = other.vertices_;
+    blocks_ = other.blocks_;
+    mean_ = other.mean_;
+    graph_ = other.graph_;
+    start_table_ = other.start_table_;
+    table_resolution_ = other.table_resolution_;
+    hint_.store(other.hint_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+  }
+  return *this;
+}
+
+Polytope::Polytope(Polytope&& other) noexcept
+    : vertices_(std::move(other.vertices_)),
+      blocks_(std::move(other.blocks_)),
+      mean_(other.mean_),
+      graph_(std::move(other.graph_)),
+      start_table_(std::move(other.start_table_)),
+      table_resolution_(other.table_resolution_),
+      hint_(other.hint_.load(std::memory_order_relaxed)) {}
+
+Polytope& Polytope::operator=(Polytope&& other) noexcept {
+  vertices_ = std::move(other.vertices_);
+  blocks_ = std::move(other.blocks_);
+  mean_ = other.mean_;
+  graph_ = std::move(other.graph_);
+  start_table_ = std::move(other.start_table_);
+  table_resolution_ = other.table_resolution_;
+  hint_.store(other.hint_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+  return *this;
+}
+
+Polytope::~Polytope() = default;
+
+void Polytope::build_blocks() {
+  const std::size_t n = vertices_.size();
+  blocks_.assign((n + kBlock - 1) / kBlock, Block{});
+  for (std::size_t i = 0; i < blocks_.size() * kBlock; ++i) {
+    const Vec3& v = vertices_[std::min(i, n - 1)];  // padding: copies of the last vertex
+    Block& b = blocks_[i / kBlock];
+    b.x[i % kBlock] = v.x();
+    b.y[i % kBlock] = v.y();
+    b.z[i % kBlock] = v.z();
+  }
+}
+
+std::size_t Polytope::scan_support_index(const Vec3& d) const {
+  // The textbook loop starts from vertex 0's dot product; if that is NaN nothing compares
+  // greater and it returns 0. The blocked scan skips NaNs instead, so that case is decided here.
+  if (std::isnan(vertices_[0].dot(d))) return 0;
+  return scan(blocks_.data(), blocks_.size(), d.x(), d.y(), d.z());
+}
+
+// ---- hill climbing -------------------------------------------------------------------------
+
+void Polytope::enable_hill_climbing(const std::vector<std::vector<int>>& adjacency) {
+  const std::size_t n = vertices_.size();
+  if (adjacency.size() != n)
+    throw std::invalid_argument("hill climbing: adjacency has " +
+                                std::to_string(adjacency.size()) + " rows for " +
+                                std::to_string(n) + " vertices");
+  auto graph = std::make_shared<HullGraph>();
+  graph->offsets.reserve(n + 1);
+  graph->offsets.push_back(0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int j : adjacency[i]) {
+      if (j < 0 || static_cast<std::size_t>(j) >= n || static_cast<std::size_t>(j) == i)
+        throw std::invalid_argument("hill climbing: neighbour " + std::to_string(j) +
+                                    " of vertex " + std::to_string(i) + " is out of range");
+      graph->neighbours.push_back(static_cast<std::uint32_t>(j));
+    }
+    graph->offsets.push_back(static_cast<std::uint32_t>(graph->neighbours.size()));
+  }
+  graph_ = std::move(graph);
+  build_start_table();
+}
+
+namespace {
+
+/// Cell of direction d in a cube map with r × r cells per face, or -1 for d = 0.
+[[gnu::always_inline]] inline int cube_map_cell(const Vec3& d, int r) {
+  const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
+  int axis = 0;
+  double m = ax;
+  if (ay > m) {
+    axis = 1;
+    m = ay;
+  }
+  if (az > m) {
+    axis = 2;
+    m = az;
+  }
+  if (!(m > 0)) return -1;
+  const double inv = 0.5 * r / m;
+  // u, v in [0, r]: the other two coordinates, projected on the face.
+  const double u = (d[(axis + 1) % 3] + m) * inv, v = (d[(axis + 2) % 3] + m) * inv;
+  const int iu = std::min(static_cast<int>(u), r - 1), iv = std::min(static_cast<int>(v), r - 1);
+  const int face = 2 * axis + (d[axis] < 0);
+  return (face * r + iu) * r + iv;
+}
+
+}  // namespace
+
+void Polytope::build_start_table() {
+  const HullGraph& g = *graph_;
+  const std::size_t n = vertices_.size();
+  // A walk must start on the graph, so points without neighbours are not candidates, unless no
+  // point has any (a cloud of copies of one point, where every index is a maximiser).
+  std::vector<std::uint32_t> on_graph;
+  for (std::size_t i = 0; i < n; ++i)
+    if (g.offsets[i + 1] > g.offsets[i]) on_graph.push_back(static_cast<std::uint32_t>(i));
+  if (on_graph.empty()) on_graph.push_back(0);
+  // About n/24 cells per face, at most 16 × 16: walks from a cell's vertex take a step or two.
+  const int r = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(on_graph.size()) / 24)),
+                           1, 16);
+  table_resolution_ = r;
+  start_table_.assign(static_cast<std::size_t>(6 * r * r), on_graph[0]);
+  for (int face = 0; face < 6; ++face) {
+    const int axis = face / 2;
+    for (int iu = 0; iu < r; ++iu) {
+      for (int iv = 0; iv < r; ++iv) {
+        Vec3 d = Vec3::Zero();
+        d[axis] = face % 2 ? -1.0 : 1.0;
+        d[(axis + 1) % 3] = (2.0 * iu + 1) / r - 1;
+        d[(axis + 2) % 3] = (2.0 * iv + 1) / r - 1;
+        std::uint32_t best = on_graph[0];
+        double best_dot = vertices_[best].dot(d);
+        for (std::uint32_t i : on_graph) {
+          if (const double dot = vertices_[i].dot(d); dot > best_dot) {
+            best_dot = dot;
+            best = i;
+          }
+        }
+        start_table_[static_cast<std::size_t>(cube_map_cell(d, r))] = best;
+      }
     }
   }
-  return best;
+  hint_.store(start_table_[0], std::memory_order_relaxed);
 }
+
+void Polytope::disable_hill_climbing() { graph_.reset(); }
+
+std::size_t Polytope::climb_support_index(const Vec3& d) const {
+  const HullGraph& g = *graph_;
+  std::uint32_t current = hint_.load(std::memory_order_relaxed);
+  double best = vertices_[current].dot(d);
+  if (std::isnan(best)) return scan_support_index(d);
+  if (const int cell = cube_map_cell(d, table_resolution_); cell >= 0) {
+    const std::uint32_t s = start_table_[static_cast<std::size_t>(cell)];
+    if (const double value = vertices_[s].dot(d); value > best) {
+      best = value;
+      current = s;
+    }
+  }
+  // Steepest ascent: move to the best strictly better neighbour until there is none. The value
+  // increases strictly at every step, so the walk ends; on a convex polytope a vertex with no
+  // better neighbour maximises d·x over the whole polytope.
+  for (;;) {
+    std::uint32_t next = current;
+    const std::uint32_t* it = g.neighbours.data() + g.offsets[current];
+    const std::uint32_t* end = g.neighbours.data() + g.offsets[current + 1];
+    for (; it != end; ++it) {
+      const double value = vertices_[*it].dot(d);
+      if (value > best) {
+        best = value;
+        next = *it;
+      }
+    }
+    if (next == current) break;
+    current = next;
+  }
+  hint_.store(current, std::memory_order_relaxed);
+  return current;
+}
+
+// ---- transforms and measures ----------------------------------------------------------------
 
 Polytope Polytope::transformed(const Pose& pose) const {
   std::vector<Vec3> moved;
   moved.reserve(vertices_.size());
   for (const Vec3& v : vertices_) moved.push_back(pose.apply(v));
-  return Polytope(std::move(moved));
+  Polytope out(std::move(moved));
+  out.graph_ = graph_;
+  if (graph_) out.build_start_table();
+  return out;
 }
 
 Polytope Polytope::scaled(double factor) const {
-  std::vector<Vec3> out;
-  out.reserve(vertices_.size());
-  for (const Vec3& v : vertices_) out.push_back(factor * v);
-  return Polytope(std::move(out));
+  std::vector<Vec3> scaled_vertices;
+  scaled_vertices.reserve(vertices_.size());
+  for (const Vec3& v : vertices_) scaled_vertices.push_back(factor * v);
+  Polytope out(std::move(scaled_vertices));
+  out.graph_ = graph_;
+  if (graph_) out.build_start_table();
+  return out;
 }
 
 static double cloud_diagonal(std::span<const Vec3> cloud) {
@@ -60,12 +328,6 @@ static double cloud_diagonal(std::span<const Vec3> cloud) {
 }
 
 double Polytope::bounding_box_diagonal() const { return cloud_diagonal(vertices_); }
-
-Vec3 Polytope::vertex_mean() const {
-  Vec3 sum = Vec3::Zero();
-  for (const Vec3& v : vertices_) sum += v;
-  return sum / static_cast<double>(vertices_.size());
-}
 
 double pair_size(std::span<const Vec3> a, std::span<const Vec3> b) {
   return std::max(cloud_diagonal(a), cloud_diagonal(b));

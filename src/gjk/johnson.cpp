@@ -11,13 +11,28 @@ namespace {
 constexpr std::array<std::uint8_t, 15> kSubsetsBySize = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12,
                                                          7, 11, 13, 14, 15};
 
-int first_index(std::uint8_t mask) { return std::countr_zero(static_cast<unsigned>(mask)); }
+constexpr int first_index(std::uint8_t mask) {
+  return std::countr_zero(static_cast<unsigned>(mask));
+}
 
-}  // namespace
+// The functions below are written once for each simplex size N (a template parameter), so
+// that every subset test and loop bound is a compile-time constant: the compiler unrolls the
+// whole recursion into straight-line arithmetic. Each cofactor is still computed with the same
+// operations in the same order as the recursion above states it (differences first, then the
+// sum over i ∈ X' in increasing i, starting from 0), so the results are bit for bit those of
+// the generic loop.
 
-JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
-  JohnsonCofactors c;
-  const std::uint8_t all = static_cast<std::uint8_t>((1u << count) - 1);
+/// Cofactor storage without zero-initialisation, for closest_point: it reads only entries that
+/// fill_cofactors wrote (Δ_i(X) with i ∈ X ⊆ {0 … N−1}).
+struct UninitialisedCofactors {
+  double delta[16][4];
+  double total[16];
+};
+
+template <int N, class Cofactors>
+[[gnu::always_inline]] inline void fill_cofactors(const std::array<Vec3, 4>& y, Cofactors& c) {
+  constexpr std::uint8_t all = static_cast<std::uint8_t>((1u << N) - 1);
+#pragma GCC unroll 16
   for (std::uint8_t x : kSubsetsBySize) {
     if ((x & all) != x) continue;
     if (std::popcount(static_cast<unsigned>(x)) == 1) {
@@ -28,30 +43,89 @@ JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
     // Build Δ_j(X) from the subset X' = X \ {j} for each j ∈ X. X' has one point fewer and
     // was filled earlier because the order is by size.
     double total = 0;
-    for (int j = 0; j < count; ++j) {
+#pragma GCC unroll 4
+    for (int j = 0; j < N; ++j) {
       if (!(x & (1u << j))) continue;
       const std::uint8_t rest = static_cast<std::uint8_t>(x & ~(1u << j));
       const int k = first_index(rest);
       const Vec3 edge = y[k] - y[j];  // differences first: better than subtracting dot products
       double dj = 0;
-      for (int i = 0; i < count; ++i)
+#pragma GCC unroll 4
+      for (int i = 0; i < N; ++i)
         if (rest & (1u << i)) dj += c.delta[rest][i] * edge.dot(y[i]);
       c.delta[x][j] = dj;
       total += dj;
     }
     c.total[x] = total;
   }
-  return c;
 }
 
-bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count) {
+template <int N, class Cofactors>
+[[gnu::always_inline]] inline bool subset_is_valid(const Cofactors& c, std::uint8_t subset) {
   if (!(c.total[subset] > 0)) return false;  // also rejects NaN
-  for (int i = 0; i < count; ++i) {
+#pragma GCC unroll 4
+  for (int i = 0; i < N; ++i) {
     const bool inside = subset & (1u << i);
     if (inside && !(c.delta[subset][i] > 0)) return false;
     if (!inside && !(c.delta[subset | (1u << i)][i] <= 0)) return false;
   }
   return true;
+}
+
+template <int N>
+JohnsonSolution closest_point(const std::array<Vec3, 4>& y) {
+  UninitialisedCofactors c;
+  fill_cofactors<N>(y, c);
+  constexpr std::uint8_t all = static_cast<std::uint8_t>((1u << N) - 1);
+  JohnsonSolution s;
+#pragma GCC unroll 16
+  for (std::uint8_t x : kSubsetsBySize) {
+    if ((x & all) != x || !subset_is_valid<N>(c, x)) continue;
+    s.found = true;
+    s.subset = x;
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i) {
+      if (!(x & (1u << i))) continue;
+      s.weights[i] = c.delta[x][i] / c.total[x];
+      s.closest += s.weights[i] * y[i];
+    }
+    return s;
+  }
+  return s;
+}
+
+}  // namespace
+
+JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
+  JohnsonCofactors c;
+  switch (count) {
+    case 1: fill_cofactors<1>(y, c); break;
+    case 2: fill_cofactors<2>(y, c); break;
+    case 3: fill_cofactors<3>(y, c); break;
+    case 4: fill_cofactors<4>(y, c); break;
+    default: break;  // no points: no subsets
+  }
+  return c;
+}
+
+bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count) {
+  switch (count) {
+    case 1: return subset_is_valid<1>(c, subset);
+    case 2: return subset_is_valid<2>(c, subset);
+    case 3: return subset_is_valid<3>(c, subset);
+    case 4: return subset_is_valid<4>(c, subset);
+    default: return subset_is_valid<0>(c, subset);
+  }
+}
+
+JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
+  switch (count) {
+    case 1: return closest_point<1>(y);
+    case 2: return closest_point<2>(y);
+    case 3: return closest_point<3>(y);
+    case 4: return closest_point<4>(y);
+    default: return {};  // no points: nothing found
+  }
 }
 
 namespace {
@@ -78,16 +152,6 @@ bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8
   for (int i = 0; i < count; ++i)
     if ((subset & (1u << i)) && !(c.delta[subset][i] > 0)) return false;
   return true;
-}
-
-JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
-  const JohnsonCofactors c = johnson_cofactors(y, count);
-  const std::uint8_t all = static_cast<std::uint8_t>((1u << count) - 1);
-  for (std::uint8_t x : kSubsetsBySize) {
-    if ((x & all) != x || !johnson_subset_is_valid(c, x, count)) continue;
-    return solution_of(c, y, count, x);
-  }
-  return {};
 }
 
 JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, int count,

@@ -2,8 +2,27 @@
 //
 // The cloud need not be in convex position, and may be flat, collinear or a single point:
 // every point is a candidate support point. Vertices are stored contiguously.
+//
+// Support. The default support is a full scan over every vertex, returning the first vertex
+// that maximises d·x. The scan reads a second copy of the vertices laid out in blocks of eight
+// (x[8], y[8], z[8]: structure of arrays within a block), which the compiler turns into packed
+// SIMD arithmetic; each dot product is evaluated as (x·dx + y·dy) + z·dz, exactly as Eigen's
+// Vec3::dot does, so the scan returns the same index as the textbook loop, bit for bit, ties
+// included.
+//
+// Hill climbing (opt-in). With hull adjacency attached (enable_hill_climbing), support walks
+// the hull's vertex graph from the previous support vertex (the hint) or from a precomputed
+// start vertex for d's cell of a cube map of directions, whichever is better in d, to a vertex
+// no neighbour of which is strictly better. On a convex polytope that vertex maximises d·x. It need not be the *first*
+// maximising vertex of the cloud: on ties (d normal to a face or edge) it may return another
+// maximiser, and it never returns a point that is not a hull vertex. The adjacency is computed
+// from the exact hull by exact::hull_vertex_adjacency. Because of that, and because the hint is
+// state, hill climbing is off by default: experiments compare the scan's answers bit for bit.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -19,6 +38,10 @@ class InvalidGeometry : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// Vertex counts from which hill climbing beats the blocked scan on the machines measured
+/// (see bench/ and `gjklab bench --suite random`); callers decide, this is a suggestion.
+inline constexpr std::size_t kHillClimbingMinVertices = 256;
+
 class Polytope {
  public:
   /// Throws InvalidGeometry if the cloud is empty or has a NaN or infinite coordinate.
@@ -27,22 +50,74 @@ class Polytope {
   std::span<const Vec3> vertices() const { return vertices_; }
   std::size_t size() const { return vertices_.size(); }
 
-  /// Index of a vertex maximising d·x (the first such vertex on ties).
-  std::size_t support_index(const Vec3& d) const;
+  /// Index of a vertex maximising d·x. With the default full scan: the first such vertex on
+  /// ties. With hill climbing enabled: some maximising hull vertex (see the file comment).
+  std::size_t support_index(const Vec3& d) const {
+    return graph_ ? climb_support_index(d) : scan_support_index(d);
+  }
   Vec3 support(const Vec3& d) const { return vertices_[support_index(d)]; }
 
-  /// The same cloud with every vertex moved by the pose.
+  /// The full scan, whatever the mode: the first vertex maximising d·x. For a NaN d (or any d
+  /// for which vertex 0's dot product is NaN) the answer is 0, as for the textbook loop.
+  std::size_t scan_support_index(const Vec3& d) const;
+
+  /// Attaches hull adjacency and switches support to hill climbing. adjacency[i] lists the
+  /// neighbours of point i on the hull's boundary graph (empty for points that are not hull
+  /// vertices, and for repeated copies of a point). Throws std::invalid_argument if it has the
+  /// wrong size, an index out of range, or no vertex with neighbours while size() > 1.
+  void enable_hill_climbing(const std::vector<std::vector<int>>& adjacency);
+  /// Back to the full scan (drops the adjacency).
+  void disable_hill_climbing();
+  bool uses_hill_climbing() const { return graph_ != nullptr; }
+
+  /// The same cloud with every vertex moved by the pose. Hill climbing, if enabled, stays
+  /// enabled with the same adjacency: a rigid motion preserves the hull's combinatorics (up
+  /// to rounding of nearly flat configurations).
   Polytope transformed(const Pose& pose) const;
-  /// The same cloud with every coordinate multiplied by factor.
+  /// The same cloud with every coordinate multiplied by factor (adjacency kept, as above).
   Polytope scaled(double factor) const;
 
   /// Length of the diagonal of the axis-aligned bounding box (length units).
   double bounding_box_diagonal() const;
-  /// Mean of the vertices (not the volume centroid).
-  Vec3 vertex_mean() const;
+  /// Mean of the vertices (not the volume centroid); computed once, at construction.
+  Vec3 vertex_mean() const { return mean_; }
+
+  Polytope(const Polytope& other);
+  Polytope& operator=(const Polytope& other);
+  Polytope(Polytope&& other) noexcept;
+  Polytope& operator=(Polytope&& other) noexcept;
+  ~Polytope();
+
+  /// Vertices per block of the scan's layout.
+  static constexpr int kBlock = 8;
+  /// One block of the scan's layout; the last block is padded with copies of the last vertex
+  /// (which can never win: the real last vertex has a smaller index and the same dot product).
+  struct alignas(64) Block {
+    double x[kBlock], y[kBlock], z[kBlock];
+  };
+
+  /// Hull graph for hill climbing, in compressed rows.
+  struct HullGraph {
+    std::vector<std::uint32_t> offsets;     ///< neighbours of i: [offsets[i], offsets[i+1])
+    std::vector<std::uint32_t> neighbours;
+  };
 
  private:
+  std::size_t climb_support_index(const Vec3& d) const;
+  void build_blocks();
+  void build_start_table();
+
   std::vector<Vec3> vertices_;
+  std::vector<Block> blocks_;
+  Vec3 mean_ = Vec3::Zero();
+  std::shared_ptr<const HullGraph> graph_;
+  /// Start vertices of hill climbing: for each cell of a cube map of directions (6 faces of
+  /// table_resolution_² cells), the graph vertex extreme along the cell's central direction.
+  std::vector<std::uint32_t> start_table_;
+  int table_resolution_ = 1;
+  /// Last support vertex of hill climbing. Relaxed atomic: concurrent queries on one polytope
+  /// stay well defined (each then starts from some recent vertex, which is still correct).
+  mutable std::atomic<std::uint32_t> hint_{0};
 };
 
 /// Returns an empty string if the cloud is valid, else what is wrong with it (for messages).

@@ -78,7 +78,13 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       trace(d, w, GjkStep::separated);
       return finish(false, Termination::converged);
     }
-    for (int i = simplex.size; i > 0; --i) simplex.points[i] = simplex.points[i - 1];
+    // Make room for the newest point at the front (a fall-through switch rather than a loop
+    // with a data-dependent trip count: the same moves, without the loop's mispredictions).
+    switch (simplex.size) {
+      case 3: simplex.points[3] = simplex.points[2]; [[fallthrough]];
+      case 2: simplex.points[2] = simplex.points[1]; [[fallthrough]];
+      default: simplex.points[1] = simplex.points[0];
+    }
     simplex.points[0] = w.w;
     ++simplex.size;
     if (detail::boolean_gjk_step(simplex, direction)) {

@@ -1,0 +1,97 @@
+#include "gjklab/bench.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fstream>
+#include <ostream>
+
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/bench.hpp"
+
+namespace gjklab::cli {
+
+namespace bench = experiment::bench;
+
+CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "time every algorithm on identical inputs (interleaved, medians and ratios)");
+  cmd->add_option("--suite", args.suite, "seed, random, scene or all (default: all)")
+      ->check(CLI::IsMember({"seed", "random", "scene", "all"}));
+  cmd->add_option("--algorithms", args.algorithms,
+                  "comma-separated names, each optionally with +hc for hill-climbing support "
+                  "(default: every boolean and distance algorithm): " +
+                      experiment::algorithm_names())
+      ->delimiter(',');
+  cmd->add_option("--reference", args.reference,
+                  "reference of every ratio (default: libccd-mpr for booleans, the fastest peer "
+                  "distance query for distances)");
+  cmd->add_option("--json", args.json, "also write the records as JSON to this file");
+  cmd->add_option("--markdown", args.markdown,
+                  "also write the seed tables (with the config's published figures) as Markdown");
+  cmd->add_option("--config", args.config, "bench config file (TOML), e.g. experiments/seed_tables.toml");
+  cmd->add_option("--cases", args.cases, "only cases whose name contains this text");
+  cmd->add_option("--samples", args.samples, "interleaved samples per case (default 31)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--configurations", args.configurations,
+                  "seeded configurations per seed/random case (default 8)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--batch-us", args.batch_us, "target time of one batch in µs (default 500)")
+      ->check(CLI::Range(0.0, 1e7));
+  cmd->add_option("--seed", args.seed, "seed of the inputs (default 1)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet", args.quiet, "no progress lines on stderr");
+  return cmd;
+}
+
+int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& err) {
+  bench::BenchConfig config;
+  try {
+    if (!args.config.empty()) config = bench::load_bench_config(args.config);
+  } catch (const bench::BenchError& e) {
+    err << "gjklab bench: " << e.what() << "\n";
+    return 2;
+  }
+  // Command-line settings override the file's.
+  if (args.suite != "all" || args.config.empty()) {
+    if (args.suite == "all")
+      config.suites = {"seed", "random", "scene"};
+    else
+      config.suites = {args.suite};
+  }
+  if (!args.algorithms.empty()) config.algorithms = args.algorithms;
+  if (!args.reference.empty()) config.reference = args.reference;
+  if (!args.cases.empty()) config.case_filter = args.cases;
+  if (args.samples > 0) config.samples = args.samples;
+  if (args.configurations > 0) config.configurations = args.configurations;
+  if (args.batch_us >= 0) config.batch_seconds = args.batch_us * 1e-6;
+  if (args.seed >= 0) config.seed = static_cast<std::uint64_t>(args.seed);
+
+  bench::BenchReport report;
+  try {
+    report = bench::run_bench(config, args.quiet ? nullptr : &err);
+  } catch (const bench::BenchError& e) {
+    err << "gjklab bench: " << e.what() << "\n";
+    return 2;
+  }
+  out << "gjklab bench";
+  for (const auto& [k, v] : bench::bench_environment()) out << "\n  " << k << ": " << v;
+  out << "\n  samples: " << config.samples << ", configurations: " << config.configurations
+      << ", batch: " << config.batch_seconds * 1e6 << " us, seed: " << config.seed << "\n";
+  bench::print_table(report, out);
+  auto write = [&](const std::string& path, auto&& writer) {
+    std::ofstream file(path);
+    if (!file) {
+      err << "gjklab bench: cannot write " << path << "\n";
+      return false;
+    }
+    writer(file);
+    return static_cast<bool>(file);
+  };
+  if (!args.json.empty() &&
+      !write(args.json, [&](std::ostream& o) { bench::write_json(report, o); }))
+    return 1;
+  if (!args.markdown.empty() &&
+      !write(args.markdown, [&](std::ostream& o) { bench::write_seed_tables_markdown(report, o); }))
+    return 1;
+  return 0;
+}
+
+}  // namespace gjklab::cli

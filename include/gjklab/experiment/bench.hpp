@@ -1,0 +1,115 @@
+// `gjklab bench`: every algorithm on identical inputs, timed in one process.
+//
+// Suites (all seeded, so a run measures the same inputs every time):
+//   seed    the classic demo shapes (box 8, cone 33, cylinder 64, UV sphere 482 vertices), every
+//           unordered pair, overlapping (centres 0.5 apart) and separated (centres 2.5 apart),
+//           each case `configurations` random rotations and directions;
+//   random  n points on the unit sphere (n = 8, 32, …, 8192), B moved along a random axis so
+//           that the pair's extents along it are 0.1 apart (separated) or overlap by 0.1;
+//   scene   N demo shapes (N = 8, 16, …, 72), randomly rotated, centres uniform in a ball of
+//           radius 0.5 (near one point: the shapes have size 1), every pair through the narrow
+//           phase; reported as milliseconds per full pass.
+//
+// Method. For each case, every algorithm first runs once (warm-up, and the tallies of
+// iterations and support calls), then its repetition count is set so that one batch takes
+// about `batch_seconds`. Then `samples` rounds run the batches interleaved, A B C A B C …; a
+// batch's time divided by its queries is one sample of ns per query. Times are the thread's CPU
+// time (CLOCK_THREAD_CPUTIME_ID), so time spent waiting for a core on a shared machine is not
+// counted. Reported: the median, the
+// 10th and 90th percentiles, and ratios of medians measured in the same run. Hill-climbing rows
+// (name suffix "+hc") run the same algorithm on copies of the shapes with hill-climbing
+// support enabled (Polytope::enable_hill_climbing); hull adjacency is computed before timing.
+//
+// Cost floor of a query: support_calls × (c_A + c_B), with c_X the measured time of one full-scan
+// support call on shape X (random directions): what the query would cost if nothing but its
+// support calls took time.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gjklab::experiment::bench {
+
+inline constexpr const char* kHillClimbingSuffix = "+hc";
+
+struct BenchConfig {
+  std::vector<std::string> suites = {"seed", "random", "scene"};
+  /// Algorithm names (registry names, optionally with "+hc"); empty: every registered boolean
+  /// and distance algorithm, plus hill-climbing rows of gjk-bool and gjk-johnson in the random
+  /// suite.
+  std::vector<std::string> algorithms;
+  /// Reference of every ratio; empty: libccd-mpr for boolean algorithms and the fastest
+  /// installed peer distance query for distance algorithms (libccd-gjk's boolean if none).
+  std::string reference;
+  int samples = 31;
+  double batch_seconds = 5e-4;
+  /// Seeded configurations (rotations, clouds) per case of the seed and random suites.
+  int configurations = 8;
+  std::uint64_t seed = 1;
+  /// Only cases whose name contains this text (empty: all).
+  std::string case_filter;
+  /// Published figures to print beside the seed suite (µs per query, by pair name such as
+  /// "box-cone") and the scene suite (ms per pass, by object count).
+  std::map<std::string, double> published_pair_us;
+  std::map<int, double> published_scene_ms;
+  std::string published_source;  ///< where the published figures come from
+};
+
+struct BenchRecord {
+  std::string suite;
+  std::string case_name;
+  std::string algorithm;
+  std::string pair;          ///< seed suite: "box-cone"; random: "n=512"; scene: "N=72"
+  std::string placement;     ///< "overlap", "separated" or "scene"
+  int objects = 0;           ///< scene suite: number of objects
+  long long queries = 0;     ///< queries per pass over the case (pairs × configurations)
+  double ns_median = 0, ns_p10 = 0, ns_p90 = 0;  ///< per query
+  double iterations_mean = 0;
+  double support_calls_mean = 0;
+  double intersect_fraction = 0;
+  std::string reference;
+  std::optional<double> ratio_to_reference;
+  std::optional<double> floor_ns;        ///< cost floor per query (full-scan rows only)
+  std::optional<double> ratio_to_floor;
+  std::optional<double> ratio_to_full_scan;  ///< "+hc" rows: against the same algorithm's scan
+  int repetitions = 0;       ///< passes per batch
+  bool via_registry = false; ///< timed through AlgorithmInfo::run (no direct loop)
+};
+
+struct BenchReport {
+  std::vector<BenchRecord> records;
+  std::vector<std::string> notes;  ///< what the reader must know (reference choices, …)
+  std::string boolean_reference;
+  std::string distance_reference;
+  BenchConfig config;
+};
+
+/// Thrown for an unknown suite or algorithm name or an invalid setting (message says which).
+class BenchError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Runs the benchmark. Progress lines (one per case) go to `progress` when it is not null.
+BenchReport run_bench(const BenchConfig& config, std::ostream* progress = nullptr);
+
+/// The readable table, one block per suite.
+void print_table(const BenchReport& report, std::ostream& out);
+/// {"meta": {...}, "records": [{suite, case, algorithm, ns_median, ns_p10, ns_p90,
+/// iterations_mean, ratio_to_reference, …}, …]}
+void write_json(const BenchReport& report, std::ostream& out);
+/// Markdown with the seed and scene suites beside the published figures of the config.
+void write_seed_tables_markdown(const BenchReport& report, std::ostream& out);
+
+/// Reads a bench config file (TOML; format in experiments/README.md). Throws BenchError.
+BenchConfig load_bench_config(const std::string& path);
+
+/// Processor, compiler and commit, for the report headers.
+std::map<std::string, std::string> bench_environment();
+
+}  // namespace gjklab::experiment::bench

@@ -1,0 +1,768 @@
+#include "gjklab/experiment/bench.hpp"
+
+#include <algorithm>
+#include <ctime>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <ostream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "gjklab/build_info.hpp"
+#include "gjklab/exact/hull_adjacency.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/geometry/shapes.hpp"
+
+namespace gjklab::experiment::bench {
+
+namespace {
+
+/// Timestamps for the batches: the calling thread's CPU time, which does not advance while the
+/// thread waits for a core. On a shared machine that removes most of the noise of other
+/// processes (what remains is their effect on caches and clocks).
+struct ThreadClock {
+  using time_point = double;
+  static double now() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+};
+using Clock = ThreadClock;
+
+// ---- seeded generation ---------------------------------------------------------------------
+
+/// std::mt19937_64 (its output sequence is fixed by the standard) with our own conversions, so
+/// a seed gives the same inputs with every standard library.
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : engine_(seed) {}
+  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1p-53; }
+  double normal() {
+    const double u = 1.0 - uniform();
+    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * uniform());
+  }
+  Vec3 unit_vector() {
+    for (;;) {
+      const Vec3 g(normal(), normal(), normal());
+      if (const double n = g.norm(); n > 1e-9) return g / n;
+    }
+  }
+  /// A uniformly distributed rotation (normalised Gaussian quaternion).
+  Mat3 rotation() {
+    for (;;) {
+      const Quat q(normal(), normal(), normal(), normal());
+      if (q.norm() > 1e-9) return q.normalized().toRotationMatrix();
+    }
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+/// Names and shapes of the classic demo, in the order of the published table.
+struct DemoShape {
+  const char* name;
+  Polytope (*make)();
+};
+Polytope make_box() { return shapes::box(); }
+Polytope make_cone() { return shapes::cone(); }
+Polytope make_cylinder() { return shapes::cylinder(); }
+Polytope make_sphere() { return shapes::uv_sphere(); }
+constexpr DemoShape kDemoShapes[] = {
+    {"box", make_box}, {"cone", make_cone}, {"cylinder", make_cylinder}, {"sphere", make_sphere}};
+/// The ten pairs of the published per-pair table (indices into kDemoShapes), in its order.
+constexpr std::pair<int, int> kSeedPairs[] = {{0, 0}, {0, 1}, {0, 2}, {0, 3}, {1, 1},
+                                              {1, 2}, {1, 3}, {3, 2}, {3, 3}, {2, 2}};
+
+constexpr double kSeedOverlapDistance = 0.5;
+constexpr double kSeedSeparatedDistance = 2.5;
+constexpr double kRandomGap = 0.1;
+constexpr int kRandomSizes[] = {8, 32, 128, 512, 2048, 8192};
+constexpr int kSceneMaxObjects = 72;
+constexpr int kSceneStep = 8;
+/// Scene objects' centres are uniform in a ball of this radius: "near one point" for shapes of
+/// size 1, so most pairs overlap and the rest are close.
+constexpr double kSceneRadius = 0.5;
+
+/// The inputs of one case: shapes (owned, stable addresses) and the pairs to query.
+struct Case {
+  std::string suite, name, pair, placement;
+  int objects = 0;
+  std::vector<BenchPair> pairs;     ///< full-scan shapes
+  std::vector<BenchPair> hc_pairs;  ///< the same shapes with hill climbing
+};
+
+/// Owns every polytope of the run; deque keeps addresses stable as it grows.
+struct ShapeStore {
+  std::deque<Polytope> shapes;
+  const Polytope* add(Polytope p) {
+    shapes.push_back(std::move(p));
+    return &shapes.back();
+  }
+};
+
+/// Hill-climbing copy of a full-scan shape (adjacency from the exact hull of `base_cloud`'s
+/// shape: pass the body-frame polytope the shape was moved from, whose adjacency it shares).
+const Polytope* with_hill_climbing(ShapeStore& store, const Polytope& shape) {
+  Polytope copy = shape;
+  copy.enable_hill_climbing(exact::hull_vertex_adjacency(shape.vertices()));
+  return store.add(std::move(copy));
+}
+
+bool wanted(const BenchConfig& config, const std::string& name) {
+  return config.case_filter.empty() || name.find(config.case_filter) != std::string::npos;
+}
+
+std::vector<Case> seed_cases(const BenchConfig& config, ShapeStore& store, bool hill_climbing) {
+  std::vector<Case> out;
+  // Body-frame shapes; hill-climbing copies carry their adjacency through transformed().
+  std::vector<Polytope> base, base_hc;
+  for (const DemoShape& s : kDemoShapes) {
+    base.push_back(s.make());
+    if (hill_climbing) {
+      Polytope hc = base.back();
+      hc.enable_hill_climbing(exact::hull_vertex_adjacency(hc.vertices()));
+      base_hc.push_back(std::move(hc));
+    }
+  }
+  int case_index = 0;
+  for (const auto& [ia, ib] : kSeedPairs) {
+    for (const bool overlap : {true, false}) {
+      Case c;
+      c.suite = "seed";
+      c.pair = std::string(kDemoShapes[ia].name) + "-" + kDemoShapes[ib].name;
+      c.placement = overlap ? "overlap" : "separated";
+      c.name = c.pair + " " + c.placement;
+      Rng rng(config.seed * 1000003 + static_cast<std::uint64_t>(case_index++));
+      if (!wanted(config, c.name)) continue;
+      const double distance = overlap ? kSeedOverlapDistance : kSeedSeparatedDistance;
+      for (int k = 0; k < config.configurations; ++k) {
+        const Pose pa{rng.rotation(), Vec3::Zero()};
+        const Mat3 rb = rng.rotation();
+        const Pose pb{rb, distance * rng.unit_vector()};
+        c.pairs.push_back({store.add(base[ia].transformed(pa)), store.add(base[ib].transformed(pb))});
+        if (hill_climbing)
+          c.hc_pairs.push_back(
+              {store.add(base_hc[ia].transformed(pa)), store.add(base_hc[ib].transformed(pb))});
+      }
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+std::vector<Case> random_cases(const BenchConfig& config, ShapeStore& store, bool hill_climbing) {
+  std::vector<Case> out;
+  int case_index = 0;
+  for (int n : kRandomSizes) {
+    for (const bool overlap : {false, true}) {
+      Case c;
+      c.suite = "random";
+      c.pair = "n=" + std::to_string(n);
+      c.placement = overlap ? "overlap" : "separated";
+      c.name = c.pair + " " + c.placement;
+      Rng rng(config.seed * 2000003 + static_cast<std::uint64_t>(case_index++));
+      if (!wanted(config, c.name)) continue;
+      const double gap = overlap ? -kRandomGap : kRandomGap;
+      for (int k = 0; k < config.configurations; ++k) {
+        std::vector<Vec3> a, b;
+        for (int i = 0; i < n; ++i) a.push_back(rng.unit_vector());
+        for (int i = 0; i < n; ++i) b.push_back(rng.unit_vector());
+        // Move B along u so that its extent along u starts `gap` after A's ends.
+        const Vec3 u = rng.unit_vector();
+        double a_max = -INFINITY, b_min = INFINITY;
+        for (const Vec3& p : a) a_max = std::max(a_max, p.dot(u));
+        for (const Vec3& p : b) b_min = std::min(b_min, p.dot(u));
+        const Vec3 shift = (a_max - b_min + gap) * u;
+        for (Vec3& p : b) p += shift;
+        const Polytope* pa = store.add(Polytope(std::move(a)));
+        const Polytope* pb = store.add(Polytope(std::move(b)));
+        c.pairs.push_back({pa, pb});
+        if (hill_climbing)
+          c.hc_pairs.push_back({with_hill_climbing(store, *pa), with_hill_climbing(store, *pb)});
+      }
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+std::vector<Case> scene_cases(const BenchConfig& config, ShapeStore& store, bool hill_climbing) {
+  std::vector<Polytope> base, base_hc;
+  for (const DemoShape& s : kDemoShapes) {
+    base.push_back(s.make());
+    if (hill_climbing) {
+      Polytope hc = base.back();
+      hc.enable_hill_climbing(exact::hull_vertex_adjacency(hc.vertices()));
+      base_hc.push_back(std::move(hc));
+    }
+  }
+  // One scene of 72 objects; the case with N objects uses its first N.
+  Rng rng(config.seed * 3000017);
+  std::vector<const Polytope*> objects, objects_hc;
+  for (int i = 0; i < kSceneMaxObjects; ++i) {
+    Vec3 centre;
+    do {
+      centre = Vec3(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
+    } while (centre.squaredNorm() > 1);
+    const Pose pose{rng.rotation(), kSceneRadius * centre};
+    objects.push_back(store.add(base[i % 4].transformed(pose)));
+    if (hill_climbing) objects_hc.push_back(store.add(base_hc[i % 4].transformed(pose)));
+  }
+  std::vector<Case> out;
+  for (int n = kSceneStep; n <= kSceneMaxObjects; n += kSceneStep) {
+    Case c;
+    c.suite = "scene";
+    c.objects = n;
+    c.pair = "N=" + std::to_string(n);
+    c.placement = "scene";
+    c.name = std::to_string(n) + " objects";
+    if (!wanted(config, c.name)) continue;
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) {
+        c.pairs.push_back({objects[i], objects[j]});
+        if (hill_climbing) c.hc_pairs.push_back({objects_hc[i], objects_hc[j]});
+      }
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+// ---- algorithms ------------------------------------------------------------------------------
+
+struct Entry {
+  std::string name;  ///< as printed ("gjk-johnson+hc")
+  const AlgorithmInfo* info = nullptr;
+  bool hill_climbing = false;
+  BenchLoop loop = nullptr;  ///< nullptr: through the registry
+};
+
+bool is_peer(std::string_view name) {
+  // Algorithms that wrap another library, as the registry says.
+  const AlgorithmInfo* info = find_algorithm(name);
+  return info && info->peer;
+}
+
+Entry make_entry(const std::string& name) {
+  Entry e;
+  e.name = name;
+  std::string base = name;
+  if (name.ends_with(kHillClimbingSuffix)) {
+    base = name.substr(0, name.size() - std::string_view(kHillClimbingSuffix).size());
+    e.hill_climbing = true;
+  }
+  e.info = find_algorithm(base);
+  if (!e.info)
+    throw BenchError("unknown algorithm '" + name + "'; valid names: " + algorithm_names() +
+                     " (each optionally with the suffix " + kHillClimbingSuffix + ")");
+  e.loop = find_bench_loop(base);
+  return e;
+}
+
+double seconds_since(Clock::time_point start) { return Clock::now() - start; }
+
+/// A sink the optimiser cannot see through.
+volatile double g_sink = 0;
+
+BenchTally run_loop(const Entry& e, std::span<const BenchPair> pairs,
+                    const AlgorithmOptions& options, int repetitions) {
+  BenchTally t = e.loop ? e.loop(pairs, options, repetitions)
+                        : run_bench_loop_via_registry(*e.info, pairs, options, repetitions);
+  g_sink = g_sink + t.distance_sum + static_cast<double>(t.iterations);
+  return t;
+}
+
+/// Linear interpolation between order statistics (q in [0, 1]).
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+/// ns per full-scan support call on a shape: median over rounds of 64 random directions.
+double support_cost_ns(const Polytope& p, double batch_seconds) {
+  static const std::vector<Vec3> directions = [] {
+    Rng rng(12345);
+    std::vector<Vec3> d;
+    for (int i = 0; i < 64; ++i) d.push_back(rng.unit_vector());
+    return d;
+  }();
+  std::size_t sum = 0;
+  auto round = [&](int reps) {
+    const auto start = Clock::now();
+    for (int r = 0; r < reps; ++r)
+      for (const Vec3& d : directions) sum += p.scan_support_index(d);
+    return seconds_since(start);
+  };
+  const double once = std::max(round(1), 1e-9);
+  const int reps = std::max(1, static_cast<int>(0.2 * batch_seconds / once));
+  std::vector<double> samples;
+  for (int s = 0; s < 7; ++s)
+    samples.push_back(round(reps) * 1e9 / (reps * static_cast<double>(directions.size())));
+  g_sink = g_sink + static_cast<double>(sum);
+  return quantile(samples, 0.5);
+}
+
+std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& entries,
+                                      const BenchConfig& config, const AlgorithmOptions& options,
+                                      std::map<const Polytope*, double>& support_cost) {
+  const std::size_t m = entries.size();
+  std::vector<BenchRecord> records(m);
+  std::vector<int> reps(m, 1);
+  std::vector<std::span<const BenchPair>> inputs(m);
+  for (std::size_t e = 0; e < m; ++e) {
+    inputs[e] = entries[e].hill_climbing ? std::span<const BenchPair>(c.hc_pairs)
+                                         : std::span<const BenchPair>(c.pairs);
+    BenchRecord& r = records[e];
+    r.suite = c.suite;
+    r.case_name = c.name;
+    r.algorithm = entries[e].name;
+    r.pair = c.pair;
+    r.placement = c.placement;
+    r.objects = c.objects;
+    r.queries = static_cast<long long>(inputs[e].size());
+    r.via_registry = entries[e].loop == nullptr;
+  }
+  // Warm-up: one pass each (also the tallies), then calibrate the batch size.
+  for (std::size_t e = 0; e < m; ++e) {
+    const auto start = Clock::now();
+    const BenchTally t = run_loop(entries[e], inputs[e], options, 1);
+    const double once = std::max(seconds_since(start), 1e-9);
+    reps[e] = std::clamp(static_cast<int>(config.batch_seconds / once), 1, 1 << 24);
+    BenchRecord& r = records[e];
+    const double q = static_cast<double>(std::max(t.queries, 1LL));
+    r.iterations_mean = static_cast<double>(t.iterations) / q;
+    r.support_calls_mean = static_cast<double>(t.support_calls) / q;
+    r.intersect_fraction = static_cast<double>(t.intersections) / q;
+    r.repetitions = reps[e];
+  }
+  for (std::size_t e = 0; e < m; ++e) run_loop(entries[e], inputs[e], options, reps[e]);
+
+  // Cost floor of full-scan rows: each pair's support calls times its shapes' support cost.
+  for (std::size_t e = 0; e < m; ++e) {
+    if (entries[e].hill_climbing) continue;
+    double floor = 0;
+    for (const BenchPair& p : inputs[e]) {
+      for (const Polytope* s : {p.a, p.b})
+        if (!support_cost.count(s)) support_cost[s] = support_cost_ns(*s, config.batch_seconds);
+      const BenchTally t = run_loop(entries[e], std::span<const BenchPair>(&p, 1), options, 1);
+      floor += static_cast<double>(t.support_calls) * (support_cost[p.a] + support_cost[p.b]);
+    }
+    records[e].floor_ns = floor / static_cast<double>(std::max<std::size_t>(inputs[e].size(), 1));
+  }
+
+  // Interleaved samples: A B C A B C …
+  std::vector<std::vector<double>> samples(m);
+  for (int s = 0; s < config.samples; ++s) {
+    for (std::size_t e = 0; e < m; ++e) {
+      const auto start = Clock::now();
+      run_loop(entries[e], inputs[e], options, reps[e]);
+      const double seconds = seconds_since(start);
+      samples[e].push_back(seconds * 1e9 /
+                           (static_cast<double>(reps[e]) * static_cast<double>(inputs[e].size())));
+    }
+  }
+  for (std::size_t e = 0; e < m; ++e) {
+    BenchRecord& r = records[e];
+    r.ns_median = quantile(samples[e], 0.5);
+    r.ns_p10 = quantile(samples[e], 0.1);
+    r.ns_p90 = quantile(samples[e], 0.9);
+    if (r.floor_ns) r.ratio_to_floor = r.ns_median / *r.floor_ns;
+  }
+  return records;
+}
+
+std::string pad(const std::string& s, std::size_t width, bool right = false) {
+  if (s.size() >= width) return s;
+  return right ? std::string(width - s.size(), ' ') + s : s + std::string(width - s.size(), ' ');
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
+
+/// Time with a unit that keeps three significant digits or so.
+std::string format_ns(double ns) {
+  if (ns < 10) return fixed(ns, 2) + " ns";
+  if (ns < 1000) return fixed(ns, 1) + " ns";
+  if (ns < 1e6) return fixed(ns / 1e3, ns < 1e4 ? 2 : 1) + " us";
+  return fixed(ns / 1e6, 2) + " ms";
+}
+
+std::string format_ratio(const std::optional<double>& r) { return r ? fixed(*r, 2) + "x" : "-"; }
+
+}  // namespace
+
+// ---- the run --------------------------------------------------------------------------------
+
+BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
+  if (config.samples < 1) throw BenchError("samples must be at least 1");
+  if (config.configurations < 1) throw BenchError("configurations must be at least 1");
+  if (!(config.batch_seconds >= 0)) throw BenchError("batch time must be non-negative");
+  for (const std::string& s : config.suites)
+    if (s != "seed" && s != "random" && s != "scene")
+      throw BenchError("unknown suite '" + s + "'; valid suites: seed, random, scene, all");
+
+  BenchReport report;
+  report.config = config;
+
+  // The algorithms: the requested ones, or every boolean and distance algorithm.
+  std::vector<std::string> names = config.algorithms;
+  const bool default_list = names.empty();
+  if (default_list)
+    for (const AlgorithmInfo& a : algorithms())
+      if (a.kind != AnswerKind::exact) names.emplace_back(a.name);
+  std::vector<Entry> entries;
+  for (const std::string& n : names) entries.push_back(make_entry(n));
+
+  // References.
+  auto present = [&](const std::string& n) {
+    return std::any_of(entries.begin(), entries.end(), [&](const Entry& e) { return e.name == n; });
+  };
+  auto add = [&](const std::string& n) {
+    if (!present(n)) entries.push_back(make_entry(n));
+  };
+  auto any_of_kind = [&](AnswerKind kind) {
+    return std::any_of(entries.begin(), entries.end(),
+                       [&](const Entry& e) { return e.info->kind == kind; });
+  };
+  const bool any_boolean = any_of_kind(AnswerKind::boolean);
+  const bool any_distance = any_of_kind(AnswerKind::distance) || default_list;
+  std::vector<std::string> peer_distances;
+  if (!config.reference.empty()) {
+    make_entry(config.reference);  // validates
+    add(config.reference);
+    report.boolean_reference = report.distance_reference = config.reference;
+  } else {
+    if (any_boolean && find_algorithm("libccd-mpr")) {
+      report.boolean_reference = "libccd-mpr";
+      add("libccd-mpr");
+    }
+    if (any_distance)
+      for (const AlgorithmInfo& a : algorithms())
+        if (a.kind == AnswerKind::distance && is_peer(a.name)) peer_distances.emplace_back(a.name);
+    if (!any_distance) {
+      // no distance algorithm: no distance reference
+    } else if (!peer_distances.empty()) {
+      for (const std::string& n : peer_distances) add(n);
+      report.distance_reference = "fastest peer distance";
+      std::string list;
+      for (const std::string& n : peer_distances) list += (list.empty() ? "" : ", ") + n;
+      report.notes.push_back("distance algorithms: ratios to the fastest peer distance query in "
+                             "each case (of " + list + ")");
+    } else if (find_algorithm("libccd-gjk")) {
+      report.distance_reference = "libccd-gjk";
+      add("libccd-gjk");
+      report.notes.push_back(
+          "no peer distance query is installed (libccd 2.1 has none): distance algorithms are "
+          "compared with libccd-gjk's boolean intersection test, a query that answers less");
+    }
+    if (!report.boolean_reference.empty())
+      report.notes.push_back("boolean algorithms: ratios to " + report.boolean_reference);
+  }
+  for (const Entry& e : entries)
+    if (e.loop == nullptr)
+      report.notes.push_back(e.name + " has no direct benchmark loop and is timed through the "
+                             "registry's run() (includes building its Outcome)");
+
+  AlgorithmOptions options;
+  ShapeStore store;
+  std::map<const Polytope*, double> support_cost;
+
+  for (const std::string& suite : config.suites) {
+    std::vector<Entry> suite_entries = entries;
+    // Default list: the random suite also measures hill climbing on the GJK queries.
+    if (default_list && suite == "random")
+      for (const char* n : {"gjk-bool+hc", "gjk-johnson+hc"})
+        if (!present(n)) suite_entries.push_back(make_entry(n));
+    const bool hc = std::any_of(suite_entries.begin(), suite_entries.end(),
+                                [](const Entry& e) { return e.hill_climbing; });
+    std::vector<Case> cases = suite == "seed"     ? seed_cases(config, store, hc)
+                              : suite == "random" ? random_cases(config, store, hc)
+                                                  : scene_cases(config, store, hc);
+    for (const Case& c : cases) {
+      if (progress) *progress << "bench: " << suite << " / " << c.name << "\n" << std::flush;
+      std::vector<BenchRecord> rows = measure_case(c, suite_entries, config, options, support_cost);
+      // Ratios within the case.
+      auto median_of = [&](const std::string& n) -> std::optional<double> {
+        for (const BenchRecord& r : rows)
+          if (r.algorithm == n) return r.ns_median;
+        return std::nullopt;
+      };
+      std::string fastest_peer;
+      for (const std::string& n : peer_distances)
+        if (auto t = median_of(n); t && (fastest_peer.empty() || *t < *median_of(fastest_peer)))
+          fastest_peer = n;
+      for (std::size_t e = 0; e < rows.size(); ++e) {
+        BenchRecord& r = rows[e];
+        const AnswerKind kind = suite_entries[e].info->kind;
+        std::string ref = config.reference;
+        if (ref.empty())
+          ref = kind == AnswerKind::boolean ? report.boolean_reference
+                : peer_distances.empty()    ? report.distance_reference
+                                            : fastest_peer;
+        r.reference = ref;
+        if (auto t = median_of(ref)) r.ratio_to_reference = r.ns_median / *t;
+        if (suite_entries[e].hill_climbing)
+          if (auto t = median_of(std::string(suite_entries[e].info->name)))
+            r.ratio_to_full_scan = r.ns_median / *t;
+      }
+      for (BenchRecord& r : rows) report.records.push_back(std::move(r));
+    }
+  }
+  return report;
+}
+
+// ---- output ---------------------------------------------------------------------------------
+
+void print_table(const BenchReport& report, std::ostream& out) {
+  std::string suite;
+  for (const BenchRecord& r : report.records) {
+    if (r.suite != suite) {
+      suite = r.suite;
+      const bool scene = suite == "scene";
+      out << "\n== " << suite << (scene ? "  (time per full pass over all pairs)" : "  (time per query)")
+          << "\n";
+      out << pad("case", 28) << pad("algorithm", 16) << pad("median", 11, true)
+          << pad("p10", 11, true) << pad("p90", 11, true) << pad("iters", 7, true)
+          << pad("supports", 9, true) << pad("x ref", 8, true) << pad("x floor", 8, true)
+          << pad("x scan", 8, true) << "  reference\n";
+    }
+    const double scale = r.suite == "scene" ? static_cast<double>(r.queries) : 1.0;
+    out << pad(r.case_name, 28) << pad(r.algorithm + (r.via_registry ? "*" : ""), 16)
+        << pad(format_ns(r.ns_median * scale), 11, true) << pad(format_ns(r.ns_p10 * scale), 11, true)
+        << pad(format_ns(r.ns_p90 * scale), 11, true) << pad(fixed(r.iterations_mean, 1), 7, true)
+        << pad(fixed(r.support_calls_mean, 1), 9, true)
+        << pad(format_ratio(r.ratio_to_reference), 8, true)
+        << pad(format_ratio(r.ratio_to_floor), 8, true)
+        << pad(format_ratio(r.ratio_to_full_scan), 8, true) << "  " << r.reference << "\n";
+  }
+  out << "\n";
+  out << "x ref: median time / the reference's median in the same case; x floor: median / "
+         "(support calls x full-scan support cost of both shapes); x scan: hill climbing / the "
+         "same algorithm's full scan.\n";
+  for (const std::string& n : report.notes) out << "note: " << n << "\n";
+}
+
+void write_json(const BenchReport& report, std::ostream& out) {
+  using Json = nlohmann::ordered_json;
+  Json meta;
+  for (const auto& [k, v] : bench_environment()) meta[k] = v;
+  meta["samples"] = report.config.samples;
+  meta["batch_seconds"] = report.config.batch_seconds;
+  meta["configurations"] = report.config.configurations;
+  meta["seed"] = report.config.seed;
+  meta["boolean_reference"] = report.boolean_reference;
+  meta["distance_reference"] = report.distance_reference;
+  meta["notes"] = report.notes;
+  Json records = Json::array();
+  auto opt = [](const std::optional<double>& v) -> Json { return v ? Json(*v) : Json(nullptr); };
+  for (const BenchRecord& r : report.records) {
+    Json j;
+    j["suite"] = r.suite;
+    j["case"] = r.case_name;
+    j["algorithm"] = r.algorithm;
+    j["ns_median"] = r.ns_median;
+    j["ns_p10"] = r.ns_p10;
+    j["ns_p90"] = r.ns_p90;
+    j["iterations_mean"] = r.iterations_mean;
+    j["support_calls_mean"] = r.support_calls_mean;
+    j["reference"] = r.reference;
+    j["ratio_to_reference"] = opt(r.ratio_to_reference);
+    j["floor_ns"] = opt(r.floor_ns);
+    j["ratio_to_floor"] = opt(r.ratio_to_floor);
+    j["ratio_to_full_scan"] = opt(r.ratio_to_full_scan);
+    j["intersect_fraction"] = r.intersect_fraction;
+    j["queries_per_pass"] = r.queries;
+    if (r.suite == "scene") {
+      j["objects"] = r.objects;
+      j["pass_ms_median"] = r.ns_median * static_cast<double>(r.queries) / 1e6;
+      j["pass_ms_p10"] = r.ns_p10 * static_cast<double>(r.queries) / 1e6;
+      j["pass_ms_p90"] = r.ns_p90 * static_cast<double>(r.queries) / 1e6;
+    }
+    j["repetitions"] = r.repetitions;
+    j["timed_via"] = r.via_registry ? "registry" : "direct";
+    records.push_back(std::move(j));
+  }
+  Json doc;
+  doc["meta"] = std::move(meta);
+  doc["records"] = std::move(records);
+  out << doc.dump(1) << "\n";
+}
+
+void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
+  const BenchConfig& cfg = report.config;
+  out << "# Seed tables: the classic demo's timings, reproduced\n\n";
+  out << "Generated by `gjklab bench --config experiments/seed_tables.toml --markdown "
+         "results/seed_tables.md`.\n";
+  if (!cfg.published_source.empty()) out << "Published figures: " << cfg.published_source << "\n";
+  out << "\n| | |\n|---|---|\n";
+  for (const auto& [k, v] : bench_environment()) out << "| " << k << " | " << v << " |\n";
+  out << "| samples x configurations | " << cfg.samples << " x " << cfg.configurations << " |\n";
+
+  // Algorithms in order of first appearance.
+  std::vector<std::string> algs;
+  for (const BenchRecord& r : report.records)
+    if (std::find(algs.begin(), algs.end(), r.algorithm) == algs.end()) algs.push_back(r.algorithm);
+  auto find = [&](const std::string& suite, const std::string& case_name,
+                  const std::string& alg) -> const BenchRecord* {
+    for (const BenchRecord& r : report.records)
+      if (r.suite == suite && r.case_name == case_name && r.algorithm == alg) return &r;
+    return nullptr;
+  };
+
+  bool has_seed = false, has_scene = false;
+  for (const BenchRecord& r : report.records) {
+    has_seed |= r.suite == "seed";
+    has_scene |= r.suite == "scene";
+  }
+  if (has_seed) {
+    out << "\n## Per pair (µs per query, median of " << cfg.samples
+        << " interleaved samples; each cell: overlapping / separated)\n\n";
+    out << "| pair | published |";
+    for (const std::string& a : algs) out << " " << a << " |";
+    out << " speed-up of gjk-johnson (mean of both placements) |\n|---|---:|";
+    for (std::size_t i = 0; i < algs.size(); ++i) out << "---:|";
+    out << "---:|\n";
+    for (const auto& [ia, ib] : kSeedPairs) {
+      const std::string pair = std::string(kDemoShapes[ia].name) + "-" + kDemoShapes[ib].name;
+      if (!find("seed", pair + " overlap", algs[0]) && !find("seed", pair + " separated", algs[0]))
+        continue;
+      const auto pub = cfg.published_pair_us.find(pair);
+      out << "| " << pair << " | "
+          << (pub != cfg.published_pair_us.end() ? fixed(pub->second, 1) : "-") << " |";
+      for (const std::string& a : algs) {
+        const BenchRecord* o = find("seed", pair + " overlap", a);
+        const BenchRecord* s = find("seed", pair + " separated", a);
+        out << " " << (o ? fixed(o->ns_median / 1e3, 3) : "-") << " / "
+            << (s ? fixed(s->ns_median / 1e3, 3) : "-") << " |";
+      }
+      const BenchRecord* o = find("seed", pair + " overlap", "gjk-johnson");
+      const BenchRecord* s = find("seed", pair + " separated", "gjk-johnson");
+      if (pub != cfg.published_pair_us.end() && o && s)
+        out << " " << fixed(pub->second * 1e3 / (0.5 * (o->ns_median + s->ns_median)), 0) << "x |\n";
+      else
+        out << " - |\n";
+    }
+  }
+  if (has_scene) {
+    out << "\n## All pairs of N objects (ms per full pass, median of " << cfg.samples
+        << " samples)\n\n";
+    out << "| objects | pairs | published |";
+    for (const std::string& a : algs) out << " " << a << " |";
+    out << " speed-up of gjk-johnson |\n|---:|---:|---:|";
+    for (std::size_t i = 0; i < algs.size(); ++i) out << "---:|";
+    out << "---:|\n";
+    for (int n = kSceneStep; n <= kSceneMaxObjects; n += kSceneStep) {
+      const std::string name = std::to_string(n) + " objects";
+      const BenchRecord* any = find("scene", name, algs[0]);
+      if (!any) continue;
+      const auto pub = cfg.published_scene_ms.find(n);
+      out << "| " << n << " | " << any->queries << " | "
+          << (pub != cfg.published_scene_ms.end() ? fixed(pub->second, 1) : "-") << " |";
+      for (const std::string& a : algs) {
+        const BenchRecord* r = find("scene", name, a);
+        out << " " << (r ? fixed(r->ns_median * static_cast<double>(r->queries) / 1e6, 3) : "-")
+            << " |";
+      }
+      const BenchRecord* j = find("scene", name, "gjk-johnson");
+      if (pub != cfg.published_scene_ms.end() && j)
+        out << " " << fixed(pub->second * 1e6 / (j->ns_median * static_cast<double>(j->queries)), 0)
+            << "x |\n";
+      else
+        out << " - |\n";
+    }
+  }
+  if (!report.notes.empty()) {
+    out << "\n";
+    for (const std::string& n : report.notes) out << "- " << n << "\n";
+  }
+}
+
+// ---- config file ----------------------------------------------------------------------------
+
+BenchConfig load_bench_config(const std::string& path) {
+  toml::table t;
+  try {
+    t = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << path << ":" << e.source().begin.line << ": " << e.description();
+    throw BenchError(msg.str());
+  }
+  BenchConfig c;
+  auto fail = [&](const std::string& what) { throw BenchError(path + ": " + what); };
+  auto strings = [&](const char* key, std::vector<std::string>& out) {
+    if (const toml::node* n = t.get(key)) {
+      const toml::array* a = n->as_array();
+      if (!a) fail(std::string(key) + " must be an array of strings");
+      out.clear();
+      for (const toml::node& e : *a) {
+        if (!e.is_string()) fail(std::string(key) + " must be an array of strings");
+        out.push_back(e.as_string()->get());
+      }
+    }
+  };
+  strings("suites", c.suites);
+  strings("algorithms", c.algorithms);
+  for (const auto& [key, node] : t) {
+    (void)node;
+    static const std::set<std::string> known = {"suites", "algorithms", "reference", "samples",
+                                                "batch_seconds", "configurations", "seed",
+                                                "cases", "published", "description"};
+    if (!known.count(std::string(key.str()))) fail("unknown key '" + std::string(key.str()) + "'");
+  }
+  if (auto v = t["reference"].value<std::string>()) c.reference = *v;
+  if (auto v = t["samples"].value<std::int64_t>()) c.samples = static_cast<int>(*v);
+  if (auto v = t["batch_seconds"].value<double>()) c.batch_seconds = *v;
+  if (auto v = t["configurations"].value<std::int64_t>()) c.configurations = static_cast<int>(*v);
+  if (auto v = t["seed"].value<std::int64_t>()) c.seed = static_cast<std::uint64_t>(*v);
+  if (auto v = t["cases"].value<std::string>()) c.case_filter = *v;
+  if (const toml::table* pub = t["published"].as_table()) {
+    if (auto v = (*pub)["source"].value<std::string>()) c.published_source = *v;
+    if (const toml::table* pairs = (*pub)["pair_us"].as_table())
+      for (const auto& [k, v] : *pairs) {
+        const auto x = v.value<double>();
+        if (!x) fail("published.pair_us." + std::string(k.str()) + " must be a number");
+        c.published_pair_us[std::string(k.str())] = *x;
+      }
+    if (const toml::table* scene = (*pub)["scene_ms"].as_table())
+      for (const auto& [k, v] : *scene) {
+        const auto x = v.value<double>();
+        if (!x) fail("published.scene_ms." + std::string(k.str()) + " must be a number");
+        c.published_scene_ms[std::stoi(std::string(k.str()))] = *x;
+      }
+  }
+  return c;
+}
+
+std::map<std::string, std::string> bench_environment() {
+  std::map<std::string, std::string> env;
+  env["gjklab"] = std::string(build_info::version) + " (" + build_info::git_commit + ")";
+  env["compiler"] = std::string(build_info::compiler) + " " + build_info::cxx_flags;
+  std::string cpu = "unknown";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  env["cpu"] = cpu;
+  return env;
+}
+
+}  // namespace gjklab::experiment::bench
