@@ -38,23 +38,38 @@ concept SubAlgorithm = requires(const S& s, Simplex& simplex, ClosestOnSimplex& 
   { s.reduce(simplex, out) } -> std::same_as<bool>;
 };
 
+namespace detail {
+
+/// Applies a sub-algorithm's answer (subset, weights by original index, closest point) to the
+/// simplex and the closest-point record. False, leaving both untouched, if nothing was found.
+template <class Solution>
+bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
+  if (!s.found) return false;
+  out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
+  int kept = 0;
+  for (int i = 0; i < simplex.size(); ++i) {
+    if (!(s.subset & (1u << i))) continue;
+    out.witness_a += s.weights[i] * simplex[i].a;
+    out.witness_b += s.weights[i] * simplex[i].b;
+    out.weights[kept++] = s.weights[i];
+  }
+  simplex.keep(s.subset);
+  return true;
+}
+
+inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
+  std::array<Vec3, 4> y;
+  for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
+  return y;
+}
+
+}  // namespace detail
+
 /// Johnson's distance sub-algorithm (see johnson.hpp), as published: no backup procedure.
 struct JohnsonSubAlgorithm {
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    std::array<Vec3, 4> y;
-    for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
-    const JohnsonSolution s = johnson_closest_point(y, simplex.size());
-    if (!s.found) return false;
-    out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
-    int kept = 0;
-    for (int i = 0; i < simplex.size(); ++i) {
-      if (!(s.subset & (1u << i))) continue;
-      out.witness_a += s.weights[i] * simplex[i].a;
-      out.witness_b += s.weights[i] * simplex[i].b;
-      out.weights[kept++] = s.weights[i];
-    }
-    simplex.keep(s.subset);
-    return true;
+    return detail::keep_solution(
+        johnson_closest_point(detail::simplex_points(simplex), simplex.size()), simplex, out);
   }
 };
 

@@ -20,32 +20,6 @@
 
 namespace gjklab {
 
-namespace detail {
-
-/// Applies a sub-algorithm's answer (subset, weights by original index, closest point) to the
-/// simplex and the closest-point record. False, leaving both untouched, if nothing was found.
-template <class Solution>
-bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
-  if (!s.found) return false;
-  out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
-  int kept = 0;
-  for (int i = 0; i < simplex.size(); ++i) {
-    if (!(s.subset & (1u << i))) continue;
-    out.witness_a += s.weights[i] * simplex[i].a;
-    out.witness_b += s.weights[i] * simplex[i].b;
-    out.weights[kept++] = s.weights[i];
-  }
-  simplex.keep(s.subset);
-  return true;
-}
-
-inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
-  std::array<Vec3, 4> y;
-  for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
-  return y;
-}
-
-}  // namespace detail
 
 /// Johnson's sub-algorithm with van den Bergen's backup procedure (see
 /// johnson_closest_point_with_backup): never undecided for finite points.
