@@ -14,7 +14,8 @@ void BM_JohnsonClosestPoint(benchmark::State& state) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<std::array<gjklab::Vec3, 4>> simplices(256);
   for (auto& s : simplices)
-    for (auto& p : s) p = gjklab::Vec3(u(rng), u(rng), u(rng)) + gjklab::Vec3(0.5, 0, 0);
+    for (auto& p : s)
+      p = gjklab::Vec3(u(rng), u(rng), u(rng)) + gjklab::Vec3(0.5, 0, 0);
   std::size_t k = 0;
   for (auto _ : state)
     benchmark::DoNotOptimize(gjklab::johnson_closest_point(simplices[k++ & 255], count));
@@ -26,7 +27,8 @@ void BM_JohnsonCofactors(benchmark::State& state) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<std::array<gjklab::Vec3, 4>> simplices(256);
   for (auto& s : simplices)
-    for (auto& p : s) p = gjklab::Vec3(u(rng), u(rng), u(rng));
+    for (auto& p : s)
+      p = gjklab::Vec3(u(rng), u(rng), u(rng));
   std::size_t k = 0;
   for (auto _ : state)
     benchmark::DoNotOptimize(gjklab::johnson_cofactors(simplices[k++ & 255], count));

@@ -26,14 +26,16 @@ Vec3 random_unit(std::mt19937_64& rng) {
 std::vector<Vec3> sphere_cloud(int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.push_back(random_unit(rng));
+  for (int i = 0; i < n; ++i)
+    pts.push_back(random_unit(rng));
   return pts;
 }
 
 std::vector<Vec3> random_directions(int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::vector<Vec3> out;
-  for (int i = 0; i < count; ++i) out.push_back(random_unit(rng));
+  for (int i = 0; i < count; ++i)
+    out.push_back(random_unit(rng));
   return out;
 }
 
@@ -75,7 +77,8 @@ void BM_SupportBlockedScan(benchmark::State& state) {
   const Polytope p(sphere_cloud(static_cast<int>(state.range(0)), 1));
   const auto dirs = random_directions(256, 2);
   std::size_t k = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(p.scan_support_index(dirs[k++ & 255]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(p.scan_support_index(dirs[k++ & 255]));
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 
@@ -85,7 +88,8 @@ void BM_SupportHillClimbRandom(benchmark::State& state) {
   p.enable_hill_climbing(gjklab::exact::hull_vertex_adjacency(cloud));
   const auto dirs = random_directions(256, 2);
   std::size_t k = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(p.support_index(dirs[k++ & 255]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(p.support_index(dirs[k++ & 255]));
 }
 
 void BM_SupportHillClimbCoherent(benchmark::State& state) {
@@ -94,7 +98,8 @@ void BM_SupportHillClimbCoherent(benchmark::State& state) {
   p.enable_hill_climbing(gjklab::exact::hull_vertex_adjacency(cloud));
   const auto dirs = turning_directions(4096, 0.02);
   std::size_t k = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(p.support_index(dirs[k++ & 4095]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(p.support_index(dirs[k++ & 4095]));
 }
 
 void BM_SupportDemoShape(benchmark::State& state) {
@@ -103,7 +108,8 @@ void BM_SupportDemoShape(benchmark::State& state) {
   const Polytope& p = shapes[state.range(0)];
   const auto dirs = random_directions(256, 3);
   std::size_t k = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(p.support_index(dirs[k++ & 255]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(p.support_index(dirs[k++ & 255]));
   state.SetLabel(std::to_string(p.size()) + " vertices");
 }
 

@@ -27,7 +27,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   cmd->add_option("--json", args.json, "also write the records as JSON to this file");
   cmd->add_option("--markdown", args.markdown,
                   "also write the seed tables (with the config's published figures) as Markdown");
-  cmd->add_option("--config", args.config, "bench config file (TOML), e.g. experiments/seed_tables.toml");
+  cmd->add_option("--config", args.config,
+                  "bench config file (TOML), e.g. experiments/seed_tables.toml");
   cmd->add_option("--cases", args.cases, "only cases whose name contains this text");
   cmd->add_option("--samples", args.samples, "interleaved samples per case (default 31)")
       ->check(CLI::Range(1, 100000));
@@ -36,7 +37,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--batch-us", args.batch_us, "target time of one batch in µs (default 500)")
       ->check(CLI::Range(0.0, 1e7));
-  cmd->add_option("--seed", args.seed, "seed of the inputs (default 1)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args.seed, "seed of the inputs (default 1)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", args.quiet, "no progress lines on stderr");
   return cmd;
 }
@@ -72,7 +74,8 @@ int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& er
     return 2;
   }
   out << "gjklab bench";
-  for (const auto& [k, v] : bench::bench_environment()) out << "\n  " << k << ": " << v;
+  for (const auto& [k, v] : bench::bench_environment())
+    out << "\n  " << k << ": " << v;
   out << "\n  samples: " << config.samples << ", configurations: " << config.configurations
       << ", batch: " << config.batch_seconds * 1e6 << " us, seed: " << config.seed << "\n";
   bench::print_table(report, out);

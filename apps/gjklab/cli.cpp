@@ -11,8 +11,7 @@
 
 namespace gjklab::cli {
 
-int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
-        std::ostream& err) {
+int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, std::ostream& err) {
   CLI::App app{"gjklab: a research testbed for GJK-family collision and distance queries"};
   app.require_subcommand(1);
   auto* version = app.add_subcommand("version", "print the version, build and library versions");
@@ -32,7 +31,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
     out << app.help();
     return 0;
   } catch (const CLI::ParseError& e) {
-    err << "gjklab: " << e.what() << "\n" << "run 'gjklab --help' for usage\n";
+    err << "gjklab: " << e.what() << "\n"
+        << "run 'gjklab --help' for usage\n";
     return 2;
   }
   if (query->parsed()) return run_query(query_args, in, out, err);
@@ -41,7 +41,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out,
   if (replay->parsed()) return run_replay_command(replay_args, out, err);
   if (bench->parsed()) return run_bench_command(bench_args, out, err);
   if (version->parsed()) {
-    for (const auto& [name, value] : experiment::build_provenance()) out << name << ": " << value << "\n";
+    for (const auto& [name, value] : experiment::build_provenance())
+      out << name << ": " << value << "\n";
   }
   return 0;
 }

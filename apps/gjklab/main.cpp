@@ -2,4 +2,6 @@
 
 #include "gjklab/cli.hpp"
 
-int main(int argc, char** argv) { return gjklab::cli::run(argc, argv, std::cin, std::cout, std::cerr); }
+int main(int argc, char** argv) {
+  return gjklab::cli::run(argc, argv, std::cin, std::cout, std::cerr);
+}

@@ -72,8 +72,7 @@ std::vector<std::string> answer_case(const PointCase& c,
 }
 
 /// Cases from the two point files or the cases file; file-level problems become CaseErrors.
-std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in,
-                                    std::string& source) {
+std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std::string& source) {
   if (args.cases.empty()) {
     source = args.files[0] + " " + args.files[1];
     try {
@@ -109,9 +108,9 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
   cmd->add_option("files", args.files, "point files A and B (.xyz, .off or .obj)")->expected(0, 2);
   cmd->add_option("--cases", args.cases,
                   "JSON-lines cases file, one {\"id\", \"a\", \"b\"} per line ('-' for stdin)");
-  cmd->add_option("--algorithms", args.algorithms,
-                  "comma-separated algorithm names (default: all): " +
-                      experiment::algorithm_names())
+  cmd->add_option(
+         "--algorithms", args.algorithms,
+         "comma-separated algorithm names (default: all): " + experiment::algorithm_names())
       ->delimiter(',');
   cmd->add_option("--max-iterations", args.max_iterations,
                   "iteration bound for every iterative algorithm (default: each one's own)")
@@ -128,7 +127,8 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   }
   std::vector<const AlgorithmInfo*> selected;
   if (args.algorithms.empty()) {
-    for (const AlgorithmInfo& a : experiment::algorithms()) selected.push_back(&a);
+    for (const AlgorithmInfo& a : experiment::algorithms())
+      selected.push_back(&a);
   }
   for (const std::string& name : args.algorithms) {
     const AlgorithmInfo* a = experiment::find_algorithm(name);
@@ -155,9 +155,11 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   };
   std::vector<std::thread> pool;
   const int threads = std::min<int>(args.threads, std::max<std::size_t>(cases.size(), 1));
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back(worker);
   worker();
-  for (auto& t : pool) t.join();
+  for (auto& t : pool)
+    t.join();
 
   int status = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -169,7 +171,8 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
       status = 1;
       continue;
     }
-    for (const std::string& line : lines[i]) out << line << "\n";
+    for (const std::string& line : lines[i])
+      out << line << "\n";
   }
   out.flush();
   return status;

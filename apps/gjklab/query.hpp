@@ -17,7 +17,7 @@ struct QueryArgs {
   std::vector<std::string> algorithms;  ///< empty: all
   int max_iterations = 0;               ///< 0: each algorithm's default
   int threads = 1;
-  bool depth = false;                   ///< exact penetration depth for intersecting pairs
+  bool depth = false;  ///< exact penetration depth for intersecting pairs
 };
 
 /// Registers the `query` subcommand and its options on app.

@@ -41,20 +41,22 @@ experiment::CaseGeometry case_geometry(const experiment::Archive& archive, const
 void print_trace(std::ostream& out, const TraceRecorder& trace) {
   for (const GjkIterationTrace& t : trace.iterations) {
     out << "    it " << t.iteration << " " << to_string(t.step) << ": |v|^2 "
-        << fmt("%.17g", t.v_norm_squared) << ", v.w " << fmt("%.17g", t.v_dot_w)
-        << ", lower bound " << fmt("%.17g", t.lower_bound) << "\n";
-    out << "      direction " << vec(t.direction) << ", support w " << vec(t.support.w)
-        << " (A[" << t.support.index_a << "] - B[" << t.support.index_b << "])\n";
+        << fmt("%.17g", t.v_norm_squared) << ", v.w " << fmt("%.17g", t.v_dot_w) << ", lower bound "
+        << fmt("%.17g", t.lower_bound) << "\n";
+    out << "      direction " << vec(t.direction) << ", support w " << vec(t.support.w) << " (A["
+        << t.support.index_a << "] - B[" << t.support.index_b << "])\n";
     out << "      simplex:";
     for (int i = 0; i < t.simplex.size(); ++i)
       out << " A[" << t.simplex[i].index_a << "]-B[" << t.simplex[i].index_b << "]"
-          << (t.simplex[i].index_a < 0 ? " " + vec(t.simplex[i].w) : "") << " λ="
-          << fmt("%.6g", t.weights[i]);
+          << (t.simplex[i].index_a < 0 ? " " + vec(t.simplex[i].w) : "")
+          << " λ=" << fmt("%.6g", t.weights[i]);
     out << "\n";
   }
 }
 
-bool same(double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; }
+bool same(double x, double y) {
+  return (std::isnan(x) && std::isnan(y)) || x == y;
+}
 
 /// The differences between the rerun and the archived record ("" when equal).
 std::string differences(const experiment::Outcome& now, const AlgorithmRecord& then) {
@@ -92,8 +94,8 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
     for (const CaseResult& r : archive.results)
       if (r.record.case_id == args.case_id) found = &r;
     if (!found) {
-      err << "gjklab replay: " << args.archive << ": no case " << args.case_id << " (the archive has "
-          << archive.results.size() << " cases)\n";
+      err << "gjklab replay: " << args.archive << ": no case " << args.case_id
+          << " (the archive has " << archive.results.size() << " cases)\n";
       return 1;
     }
     const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
@@ -104,9 +106,8 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
         << a.size() << " + " << b.size() << " vertices, size " << fmt("%.17g", rec.size) << "\n";
     if (found->exact)
       out << "exact: intersect " << found->exact->intersect << ", distance "
-          << fmt("%.17g", found->exact->distance) << ", squared "
-          << found->exact->distance2_num << "/" << found->exact->distance2_den << ", "
-          << to_string(found->exact->contact) << "\n";
+          << fmt("%.17g", found->exact->distance) << ", squared " << found->exact->distance2_num
+          << "/" << found->exact->distance2_den << ", " << to_string(found->exact->contact) << "\n";
 
     bool all_equal = true, any = false;
     for (std::size_t k = 0; k < h.algorithm_names.size(); ++k) {
@@ -126,15 +127,16 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
           experiment::spec_from_description(name, h.algorithm_options[k]);
       TraceRecorder trace;
       const bool traced = args.trace && info->run_traced;
-      const experiment::Outcome now = traced ? info->run_traced(a, b, spec.options, trace)
-                                             : info->run(a, b, spec.options);
+      const experiment::Outcome now =
+          traced ? info->run_traced(a, b, spec.options, trace) : info->run(a, b, spec.options);
       const AlgorithmRecord& then = found->algorithms[k];
       out << label << ": intersect " << now.intersect;
       if (now.distance) out << ", distance " << fmt("%.17g", *now.distance);
       out << ", " << now.iterations << " iterations, " << to_string(now.termination)
           << ", failure class " << to_string(then.failure) << "\n";
       if (traced) print_trace(out, trace);
-      if (args.trace && !info->run_traced) out << "    (no trace: " << name << " is not traceable)\n";
+      if (args.trace && !info->run_traced)
+        out << "    (no trace: " << name << " is not traceable)\n";
       const std::string d = differences(now, then);
       out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)
           << "\n";
@@ -143,7 +145,8 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
     if (!any) {
       err << "gjklab replay: no algorithm '" << args.algorithm << "' in " << args.archive
           << "; it has:";
-      for (const auto& l : h.algorithm_names) err << " " << l;
+      for (const auto& l : h.algorithm_names)
+        err << " " << l;
       err << "\n";
       return 1;
     }

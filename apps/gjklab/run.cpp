@@ -99,8 +99,9 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
       const auto previous = std::signal(SIGINT, on_sigint);
       const experiment::RunReport report = experiment::resume_experiment(args.resume, options);
       std::signal(SIGINT, previous);
-      return report_run(report, "resumed run (" + std::to_string(report.resumed_cases) +
-                                    " cases taken over)", out, err);
+      return report_run(
+          report, "resumed run (" + std::to_string(report.resumed_cases) + " cases taken over)",
+          out, err);
     }
     const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
     if (!args.output.empty()) options.output = args.output;
@@ -128,10 +129,12 @@ int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream
         << archive.results.size() << " of " << h.cases_planned << " cases, "
         << (archive.complete ? "complete" : "INCOMPLETE") << "\n";
     out << "run: " << h.start_time << " to " << archive.end_time << "\n";
-    for (const auto& [key, value] : h.provenance) out << key << ": " << value << "\n";
+    for (const auto& [key, value] : h.provenance)
+      out << key << ": " << value << "\n";
     for (std::size_t i = 0; i < h.algorithm_names.size(); ++i) {
       out << "options " << h.algorithm_names[i] << ":";
-      for (const auto& [key, value] : h.algorithm_options[i]) out << " " << key << "=" << value;
+      for (const auto& [key, value] : h.algorithm_options[i])
+        out << " " << key << "=" << value;
       out << "\n";
     }
     out << "\n";

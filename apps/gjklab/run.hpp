@@ -14,9 +14,9 @@ namespace gjklab::cli {
 
 struct RunArgs {
   std::string experiment;
-  std::string output;      ///< empty: the file's `output`
-  int threads = 0;         ///< 0: the file's `threads`
-  std::uint64_t cases = 0; ///< 0: the file's `cases`
+  std::string output;       ///< empty: the file's `output`
+  int threads = 0;          ///< 0: the file's `threads`
+  std::uint64_t cases = 0;  ///< 0: the file's `cases`
   bool force = false;
   std::string resume;            ///< continue this interrupted run instead
   std::uint64_t stop_after = 0;  ///< 0: run to the end

@@ -119,6 +119,7 @@ TEST_CASE("driver: evaluate_case is a function of (seed, case id)", "[unit][driv
   const CaseResult first = evaluate_case(config, 7);
   evaluate_case(config, 3);
   const CaseResult again = evaluate_case(config, 7);
+  CHECK(again.record.case_id == 7);
   require_same_results({first}, {again});
 }
 
