@@ -71,7 +71,8 @@ std::vector<std::vector<int>> hull_vertex_adjacency(std::span<const Vec3> cloud)
   } else if (summary.dimension == 3) {
     std::vector<Epick::Point_3> points;
     points.reserve(cloud.size());
-    for (const Vec3& p : cloud) points.emplace_back(p.x(), p.y(), p.z());
+    for (const Vec3& p : cloud)
+      points.emplace_back(p.x(), p.y(), p.z());
     using Mesh = CGAL::Surface_mesh<Epick::Point_3>;
     Mesh mesh;
     CGAL::convex_hull_3(points.begin(), points.end(), mesh);
@@ -83,7 +84,8 @@ std::vector<std::vector<int>> hull_vertex_adjacency(std::span<const Vec3> cloud)
     for (Mesh::Edge_index e : mesh.edges())
       link(adjacency, index_of[mesh.vertex(e, 0)], index_of[mesh.vertex(e, 1)]);
   }
-  for (auto& row : adjacency) std::sort(row.begin(), row.end());
+  for (auto& row : adjacency)
+    std::sort(row.begin(), row.end());
   return adjacency;
 }
 

@@ -113,7 +113,8 @@ void solid_features(HullFeatures& out) {
   using Mesh = CGAL::Surface_mesh<Epick::Point_3>;
   std::vector<Epick::Point_3> points;
   points.reserve(out.vertices.size());
-  for (const Vec3& v : out.vertices) points.emplace_back(v.x(), v.y(), v.z());
+  for (const Vec3& v : out.vertices)
+    points.emplace_back(v.x(), v.y(), v.z());
   Mesh mesh;
   CGAL::convex_hull_3(points.begin(), points.end(), mesh);
 
@@ -131,7 +132,8 @@ void solid_features(HullFeatures& out) {
   std::vector<int> parent(mesh.number_of_faces());
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    while (parent[f] != f)
+      f = parent[f] = parent[parent[f]];
     return f;
   };
   for (Mesh::Edge_index e : mesh.edges()) {
@@ -180,7 +182,8 @@ void solid_features(HullFeatures& out) {
     do {
       loop.push_back(vertex_of(mesh.source(h)));
       Mesh::Halfedge_index n = mesh.next(h);
-      while (group(mesh.opposite(n)) == g) n = mesh.next(mesh.opposite(n));
+      while (group(mesh.opposite(n)) == g)
+        n = mesh.next(mesh.opposite(n));
       h = n;
       if (loop.size() > halfedges) throw std::logic_error("hull features: open face boundary");
     } while (h != start);
@@ -192,7 +195,8 @@ void solid_features(HullFeatures& out) {
     if (group(h) == group(mesh.opposite(h))) continue;  // inside a merged face
     const int a = vertex_of(mesh.source(h)), b = vertex_of(mesh.target(h));
     out.edges.push_back({a, b});
-    out.edge_directions.push_back(canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
+    out.edge_directions.push_back(
+        canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
   }
   unique_directions(out.edge_directions);
 }
@@ -211,7 +215,8 @@ HullFeatures hull_features(std::span<const Vec3> cloud) {
       break;
     case 1: {
       out.edges.push_back({0, 1});
-      out.edge_directions.push_back(canonical_direction(exact(out.vertices[1]) - exact(out.vertices[0])));
+      out.edge_directions.push_back(
+          canonical_direction(exact(out.vertices[1]) - exact(out.vertices[0])));
       break;
     }
     case 2:

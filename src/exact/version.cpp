@@ -4,6 +4,8 @@
 
 namespace gjklab::exact {
 
-std::string cgal_version() { return CGAL_VERSION_STR; }
+std::string cgal_version() {
+  return CGAL_VERSION_STR;
+}
 
 }  // namespace gjklab::exact

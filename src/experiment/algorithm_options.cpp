@@ -11,8 +11,12 @@ namespace gjklab::experiment {
 
 namespace {
 
-bool is_libccd(std::string_view a) { return a == "libccd-gjk" || a == "libccd-mpr"; }
-bool is_libccd_depth(std::string_view a) { return a == "libccd-gjk-epa" || a == "libccd-mpr-depth"; }
+bool is_libccd(std::string_view a) {
+  return a == "libccd-gjk" || a == "libccd-mpr";
+}
+bool is_libccd_depth(std::string_view a) {
+  return a == "libccd-gjk-epa" || a == "libccd-mpr-depth";
+}
 
 /// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
 bool uses_distance_options(std::string_view a) {
@@ -35,7 +39,8 @@ std::vector<double> numbers(std::string_view key, std::string_view text) {
 
 double number(std::string_view key, std::string_view text) {
   const auto v = numbers(key, text);
-  if (v.size() != 1) throw std::invalid_argument("expected one number, got '" + std::string(text) + "'");
+  if (v.size() != 1)
+    throw std::invalid_argument("expected one number, got '" + std::string(text) + "'");
   if (!std::isfinite(v[0])) throw std::invalid_argument("must be finite, got " + std::string(text));
   return v[0];
 }
@@ -55,7 +60,8 @@ int iterations(std::string_view key, std::string_view text) {
 
 Vec3 direction(std::string_view key, std::string_view text) {
   const auto v = numbers(key, text);
-  if (v.size() != 3) throw std::invalid_argument("expected [x, y, z], got '" + std::string(text) + "'");
+  if (v.size() != 3)
+    throw std::invalid_argument("expected [x, y, z], got '" + std::string(text) + "'");
   const Vec3 d(v[0], v[1], v[2]);
   if (!d.allFinite() || d.isZero(0)) throw std::invalid_argument("must be finite and non-zero");
   return d;
@@ -73,12 +79,18 @@ std::string text_of(const Vec3& d) {
 
 /// Sets a key of GjkDistanceOptions; false if the key is not one of them.
 bool set_distance_option(GjkDistanceOptions& o, std::string_view key, std::string_view text) {
-  if (key == "max_iterations") o.max_iterations = iterations(key, text);
-  else if (key == "relative_gap") o.relative_gap = non_negative(key, text);
-  else if (key == "absolute_gap_squared") o.absolute_gap_squared = non_negative(key, text);
-  else if (key == "duality_gap_tolerance") o.duality_gap_tolerance = non_negative(key, text);
-  else if (key == "relative_contact") o.relative_contact = non_negative(key, text);
-  else if (key == "initial_direction") o.initial_direction = direction(key, text);
+  if (key == "max_iterations")
+    o.max_iterations = iterations(key, text);
+  else if (key == "relative_gap")
+    o.relative_gap = non_negative(key, text);
+  else if (key == "absolute_gap_squared")
+    o.absolute_gap_squared = non_negative(key, text);
+  else if (key == "duality_gap_tolerance")
+    o.duality_gap_tolerance = non_negative(key, text);
+  else if (key == "relative_contact")
+    o.relative_contact = non_negative(key, text);
+  else if (key == "initial_direction")
+    o.initial_direction = direction(key, text);
   else if (key == "convergence") {
     const auto c = convergence_from_string(text);
     if (!c)
@@ -111,7 +123,7 @@ std::string round_trip(double x) {
 
 std::vector<std::string_view> option_keys(std::string_view algorithm) {
   static const std::vector<std::string_view> distance = {
-      "max_iterations",   "convergence",       "relative_gap", "absolute_gap_squared",
+      "max_iterations",        "convergence",      "relative_gap",     "absolute_gap_squared",
       "duality_gap_tolerance", "relative_contact", "initial_direction"};
   if (algorithm == "gjk-bool") return {"max_iterations", "initial_direction"};
   if (uses_distance_options(algorithm)) return distance;
@@ -136,13 +148,17 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
   AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
   if (n == "gjk-bool") {
-    if (key == "max_iterations") o.gjk_boolean.max_iterations = iterations(key, text);
-    else o.gjk_boolean.initial_direction = direction(key, text);
+    if (key == "max_iterations")
+      o.gjk_boolean.max_iterations = iterations(key, text);
+    else
+      o.gjk_boolean.initial_direction = direction(key, text);
   } else if (uses_distance_options(n)) {
     set_distance_option(o.gjk_distance, key, text);
   } else if (n == "gjk-nesterov") {
-    if (key == "normalize_direction") o.gjk_nesterov.normalize_direction = boolean(text);
-    else set_distance_option(o.gjk_nesterov, key, text);
+    if (key == "normalize_direction")
+      o.gjk_nesterov.normalize_direction = boolean(text);
+    else
+      set_distance_option(o.gjk_nesterov, key, text);
   } else if (is_libccd(n) || is_libccd_depth(n)) {
     if (key == "max_iterations") {
       o.libccd.max_iterations = iterations(key, text);
@@ -154,11 +170,16 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
       (key == "mpr_tolerance" ? o.libccd.mpr_tolerance : o.libccd.epa_tolerance) = v;
     }
   } else if (n == "epa") {
-    if (key == "max_iterations") o.epa.max_iterations = iterations(key, text);
-    else if (key == "max_faces") o.epa.max_faces = iterations(key, text);
-    else if (key == "gjk_max_iterations") o.gjk_distance.max_iterations = iterations(key, text);
-    else if (key == "epa_relative_gap") o.epa.relative_gap = non_negative(key, text);
-    else o.epa.relative_noise = non_negative(key, text);
+    if (key == "max_iterations")
+      o.epa.max_iterations = iterations(key, text);
+    else if (key == "max_faces")
+      o.epa.max_faces = iterations(key, text);
+    else if (key == "gjk_max_iterations")
+      o.gjk_distance.max_iterations = iterations(key, text);
+    else if (key == "epa_relative_gap")
+      o.epa.relative_gap = non_negative(key, text);
+    else
+      o.epa.relative_noise = non_negative(key, text);
   }
 }
 

@@ -5,12 +5,12 @@
 #include <memory>
 #include <vector>
 
+#include "gjklab/exact/hull_features.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/gjk_nesterov.hpp"
 #include "gjklab/gjk/subalgorithms.hpp"
-#include "gjklab/exact/hull_features.hpp"
 #include "gjklab/peers/sat.hpp"
 #ifdef GJKLAB_HAVE_FCL
 #include "gjklab/peers/fcl.hpp"
@@ -248,9 +248,8 @@ Outcome run_fcl_indep(const Polytope& a, const Polytope& b, const AlgorithmOptio
 
 #ifdef GJKLAB_HAVE_BULLET
 std::shared_ptr<const peers::BulletShape> bullet_shape(const Polytope& shape) {
-  return prepared<peers::BulletShape>(shape, [](const Polytope& p) {
-    return std::make_shared<const peers::BulletShape>(p);
-  });
+  return prepared<peers::BulletShape>(
+      shape, [](const Polytope& p) { return std::make_shared<const peers::BulletShape>(p); });
 }
 
 Outcome run_bullet_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
@@ -307,8 +306,8 @@ constexpr std::array kAlgorithms = {
                   "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)",
                   run_fcl_libccd, nullptr, true, true},
     AlgorithmInfo{"fcl-indep", AnswerKind::distance,
-                  "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)",
-                  run_fcl_indep, nullptr, true, true},
+                  "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)", run_fcl_indep,
+                  nullptr, true, true},
 #endif
 #ifdef GJKLAB_HAVE_BULLET
     AlgorithmInfo{"bullet-gjk", AnswerKind::distance,
@@ -325,7 +324,9 @@ constexpr std::array kAlgorithms = {
 
 }  // namespace
 
-std::span<const AlgorithmInfo> algorithms() { return kAlgorithms; }
+std::span<const AlgorithmInfo> algorithms() {
+  return kAlgorithms;
+}
 
 const AlgorithmInfo* find_algorithm(std::string_view name) {
   for (const AlgorithmInfo& a : kAlgorithms)
@@ -371,7 +372,8 @@ template <class Query>
 BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
   BenchTally t;
   for (int r = 0; r < repetitions; ++r)
-    for (const BenchPair& p : pairs) tally(t, query(*p.a, *p.b));
+    for (const BenchPair& p : pairs)
+      tally(t, query(*p.a, *p.b));
   return t;
 }
 
@@ -388,15 +390,13 @@ BenchTally bench_gjk_johnson(std::span<const BenchPair> pairs, const AlgorithmOp
   });
 }
 
-BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                            int reps) {
+BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
     return peers::libccd_gjk_intersect(a, b, o.libccd);
   });
 }
 
-BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                            int reps) {
+BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
     return peers::libccd_mpr_intersect(a, b, o.libccd);
   });

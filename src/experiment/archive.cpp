@@ -22,12 +22,23 @@ namespace fs = std::filesystem;
 namespace {
 
 // Root attributes with a fixed meaning; every other root attribute is a provenance pair.
-constexpr std::array<std::string_view, 17> kRootAttributes = {
-    "schema_version",      "experiment_name",      "experiment_text",      "seed",
-    "cases_planned",       "start_time",           "end_time",             "oracle",
-    "touching_band",       "family_names",         "algorithm_names",      "complete",
-    "checkpoint_cases",    "checkpoint_geometry",  "checkpoint_vertices_a",
-    "checkpoint_vertices_b", "trace_mode"};
+constexpr std::array<std::string_view, 17> kRootAttributes = {"schema_version",
+                                                              "experiment_name",
+                                                              "experiment_text",
+                                                              "seed",
+                                                              "cases_planned",
+                                                              "start_time",
+                                                              "end_time",
+                                                              "oracle",
+                                                              "touching_band",
+                                                              "family_names",
+                                                              "algorithm_names",
+                                                              "complete",
+                                                              "checkpoint_cases",
+                                                              "checkpoint_geometry",
+                                                              "checkpoint_vertices_a",
+                                                              "checkpoint_vertices_b",
+                                                              "trace_mode"};
 
 bool is_root_attribute(std::string_view name) {
   return name.starts_with("checkpoint_") ||
@@ -126,9 +137,9 @@ struct ArchiveWriter::Impl {
     h5::Column case_id, iteration, step, direction, support, index_a, index_b, v_norm_squared,
         v_dot_w, lower_bound, simplex_size, simplex, simplex_index_a, simplex_index_b, weights;
     std::vector<h5::Column*> all() {
-      return {&case_id,     &iteration,      &step,           &direction,    &support,
-              &index_a,     &index_b,        &v_norm_squared, &v_dot_w,      &lower_bound,
-              &simplex_size, &simplex,       &simplex_index_a, &simplex_index_b, &weights};
+      return {&case_id,         &iteration,       &step,    &direction,   &support,      &index_a,
+              &index_b,         &v_norm_squared,  &v_dot_w, &lower_bound, &simplex_size, &simplex,
+              &simplex_index_a, &simplex_index_b, &weights};
     }
   };
   struct Columns {
@@ -155,7 +166,8 @@ struct ArchiveWriter::Impl {
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
                     &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure});
       for (TraceColumns& t : traces)
-        for (h5::Column* c : t.all()) all.push_back(c);
+        for (h5::Column* c : t.all())
+          all.push_back(c);
       for (h5::Column* c : all)
         cx.check(c->close(), "cannot close dataset " + c->path());
     }
@@ -413,7 +425,8 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     g.vertices_a.append(cx, va);
     g.vertices_b.append(cx, vb);
   }
-  for (std::size_t k = 0; k < c.traces.size(); ++k) append_traces(c.traces[k], rs, k);
+  for (std::size_t k = 0; k < c.traces.size(); ++k)
+    append_traces(c.traces[k], rs, k);
 }
 
 void ArchiveWriter::Impl::append_traces(TraceColumns& c, std::span<const CaseResult> rs,
@@ -614,7 +627,8 @@ void read_traces(const h5::Context& cx, hid_t r, const Types& t, Archive& a,
       tr.lower_bound = lb[j];
       for (int i = 0; i < size[j]; ++i) {
         SimplexVertex v;
-        v.w = Vec3(simplex[12 * j + 3 * i], simplex[12 * j + 3 * i + 1], simplex[12 * j + 3 * i + 2]);
+        v.w =
+            Vec3(simplex[12 * j + 3 * i], simplex[12 * j + 3 * i + 1], simplex[12 * j + 3 * i + 2]);
         v.index_a = sia[4 * j + i];
         v.index_b = sib[4 * j + i];
         tr.simplex.push(v);
@@ -764,8 +778,7 @@ Archive read_archive(const fs::path& path) {
       const auto termination =
           h5::read_column<Termination>(cx, gi, p, "termination", t.termination.get(), n);
       const auto time_ns = h5::read_column<double>(cx, gi, p, "time_ns", f64m, n);
-      const auto failure =
-          h5::read_column<FailureClass>(cx, gi, p, "failure", t.failure.get(), n);
+      const auto failure = h5::read_column<FailureClass>(cx, gi, p, "failure", t.failure.get(), n);
       for (std::size_t i = 0; i < n; ++i) {
         AlgorithmRecord& ar = a.results[i].algorithms[k];
         ar.intersect = intersect[i] != 0;
@@ -820,7 +833,8 @@ Archive read_archive(const fs::path& path) {
       geo.b = slice(vb, b_offset[j], b_count[j], "vertices_b");
     }
   }
-  if (h5::has_attr(cx, r, "/", "trace_mode")) h.trace_mode = h5::read_attr_string(cx, r, "/", "trace_mode");
+  if (h5::has_attr(cx, r, "/", "trace_mode"))
+    h.trace_mode = h5::read_attr_string(cx, r, "/", "trace_mode");
   if (h.trace_mode != "none") read_traces(cx, r, t, a, committed_traces_for(cx, r, a.complete, h));
   return a;
 }

@@ -1,8 +1,9 @@
 #include "gjklab/experiment/bench.hpp"
 
+#include <toml++/toml.h>
 #include <algorithm>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <deque>
 #include <fstream>
 #include <iomanip>
@@ -13,7 +14,6 @@
 #include <random>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "gjklab/build_info.hpp"
 #include "gjklab/exact/hull_adjacency.hpp"
@@ -72,10 +72,18 @@ struct DemoShape {
   const char* name;
   Polytope (*make)();
 };
-Polytope make_box() { return shapes::box(); }
-Polytope make_cone() { return shapes::cone(); }
-Polytope make_cylinder() { return shapes::cylinder(); }
-Polytope make_sphere() { return shapes::uv_sphere(); }
+Polytope make_box() {
+  return shapes::box();
+}
+Polytope make_cone() {
+  return shapes::cone();
+}
+Polytope make_cylinder() {
+  return shapes::cylinder();
+}
+Polytope make_sphere() {
+  return shapes::uv_sphere();
+}
 constexpr DemoShape kDemoShapes[] = {
     {"box", make_box}, {"cone", make_cone}, {"cylinder", make_cylinder}, {"sphere", make_sphere}};
 /// The ten pairs of the published per-pair table (indices into kDemoShapes), in its order.
@@ -148,7 +156,8 @@ std::vector<Case> seed_cases(const BenchConfig& config, ShapeStore& store, bool 
         const Pose pa{rng.rotation(), Vec3::Zero()};
         const Mat3 rb = rng.rotation();
         const Pose pb{rb, distance * rng.unit_vector()};
-        c.pairs.push_back({store.add(base[ia].transformed(pa)), store.add(base[ib].transformed(pb))});
+        c.pairs.push_back(
+            {store.add(base[ia].transformed(pa)), store.add(base[ib].transformed(pb))});
         if (hill_climbing)
           c.hc_pairs.push_back(
               {store.add(base_hc[ia].transformed(pa)), store.add(base_hc[ib].transformed(pb))});
@@ -174,15 +183,20 @@ std::vector<Case> random_cases(const BenchConfig& config, ShapeStore& store, boo
       const double gap = overlap ? -kRandomGap : kRandomGap;
       for (int k = 0; k < config.configurations; ++k) {
         std::vector<Vec3> a, b;
-        for (int i = 0; i < n; ++i) a.push_back(rng.unit_vector());
-        for (int i = 0; i < n; ++i) b.push_back(rng.unit_vector());
+        for (int i = 0; i < n; ++i)
+          a.push_back(rng.unit_vector());
+        for (int i = 0; i < n; ++i)
+          b.push_back(rng.unit_vector());
         // Move B along u so that its extent along u starts `gap` after A's ends.
         const Vec3 u = rng.unit_vector();
         double a_max = -INFINITY, b_min = INFINITY;
-        for (const Vec3& p : a) a_max = std::max(a_max, p.dot(u));
-        for (const Vec3& p : b) b_min = std::min(b_min, p.dot(u));
+        for (const Vec3& p : a)
+          a_max = std::max(a_max, p.dot(u));
+        for (const Vec3& p : b)
+          b_min = std::min(b_min, p.dot(u));
         const Vec3 shift = (a_max - b_min + gap) * u;
-        for (Vec3& p : b) p += shift;
+        for (Vec3& p : b)
+          p += shift;
         const Polytope* pa = store.add(Polytope(std::move(a)));
         const Polytope* pb = store.add(Polytope(std::move(b)));
         c.pairs.push_back({pa, pb});
@@ -268,7 +282,9 @@ Entry make_entry(const std::string& name) {
   return e;
 }
 
-double seconds_since(Clock::time_point start) { return Clock::now() - start; }
+double seconds_since(Clock::time_point start) {
+  return Clock::now() - start;
+}
 
 /// A sink the optimiser cannot see through.
 volatile double g_sink = 0;
@@ -295,14 +311,16 @@ double support_cost_ns(const Polytope& p, double batch_seconds) {
   static const std::vector<Vec3> directions = [] {
     Rng rng(12345);
     std::vector<Vec3> d;
-    for (int i = 0; i < 64; ++i) d.push_back(rng.unit_vector());
+    for (int i = 0; i < 64; ++i)
+      d.push_back(rng.unit_vector());
     return d;
   }();
   std::size_t sum = 0;
   auto round = [&](int reps) {
     const auto start = Clock::now();
     for (int r = 0; r < reps; ++r)
-      for (const Vec3& d : directions) sum += p.scan_support_index(d);
+      for (const Vec3& d : directions)
+        sum += p.scan_support_index(d);
     return seconds_since(start);
   };
   const double once = std::max(round(1), 1e-9);
@@ -347,7 +365,8 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
     r.intersect_fraction = static_cast<double>(t.intersections) / q;
     r.repetitions = reps[e];
   }
-  for (std::size_t e = 0; e < m; ++e) run_loop(entries[e], inputs[e], options, reps[e]);
+  for (std::size_t e = 0; e < m; ++e)
+    run_loop(entries[e], inputs[e], options, reps[e]);
 
   // Cost floor of full-scan rows: each pair's support calls times its shapes' support cost.
   for (std::size_t e = 0; e < m; ++e) {
@@ -402,7 +421,9 @@ std::string format_ns(double ns) {
   return fixed(ns / 1e6, 2) + " ms";
 }
 
-std::string format_ratio(const std::optional<double>& r) { return r ? fixed(*r, 2) + "x" : "-"; }
+std::string format_ratio(const std::optional<double>& r) {
+  return r ? fixed(*r, 2) + "x" : "-";
+}
 
 }  // namespace
 
@@ -426,7 +447,8 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
     for (const AlgorithmInfo& a : algorithms())
       if (a.kind != AnswerKind::exact) names.emplace_back(a.name);
   std::vector<Entry> entries;
-  for (const std::string& n : names) entries.push_back(make_entry(n));
+  for (const std::string& n : names)
+    entries.push_back(make_entry(n));
 
   // References.
   auto present = [&](const std::string& n) {
@@ -457,12 +479,16 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
     if (!any_distance) {
       // no distance algorithm: no distance reference
     } else if (!peer_distances.empty()) {
-      for (const std::string& n : peer_distances) add(n);
+      for (const std::string& n : peer_distances)
+        add(n);
       report.distance_reference = "fastest peer distance";
       std::string list;
-      for (const std::string& n : peer_distances) list += (list.empty() ? "" : ", ") + n;
-      report.notes.push_back("distance algorithms: ratios to the fastest peer distance query in "
-                             "each case (of " + list + ")");
+      for (const std::string& n : peer_distances)
+        list += (list.empty() ? "" : ", ") + n;
+      report.notes.push_back(
+          "distance algorithms: ratios to the fastest peer distance query in "
+          "each case (of " +
+          list + ")");
     } else if (find_algorithm("libccd-gjk")) {
       report.distance_reference = "libccd-gjk";
       add("libccd-gjk");
@@ -475,7 +501,8 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
   }
   for (const Entry& e : entries)
     if (e.loop == nullptr)
-      report.notes.push_back(e.name + " has no direct benchmark loop and is timed through the "
+      report.notes.push_back(e.name +
+                             " has no direct benchmark loop and is timed through the "
                              "registry's run() (includes building its Outcome)");
 
   AlgorithmOptions options;
@@ -520,7 +547,8 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
           if (auto t = median_of(std::string(suite_entries[e].info->name)))
             r.ratio_to_full_scan = r.ns_median / *t;
       }
-      for (BenchRecord& r : rows) report.records.push_back(std::move(r));
+      for (BenchRecord& r : rows)
+        report.records.push_back(std::move(r));
     }
   }
   return report;
@@ -534,8 +562,8 @@ void print_table(const BenchReport& report, std::ostream& out) {
     if (r.suite != suite) {
       suite = r.suite;
       const bool scene = suite == "scene";
-      out << "\n== " << suite << (scene ? "  (time per full pass over all pairs)" : "  (time per query)")
-          << "\n";
+      out << "\n== " << suite
+          << (scene ? "  (time per full pass over all pairs)" : "  (time per query)") << "\n";
       out << pad("case", 28) << pad("algorithm", 16) << pad("median", 11, true)
           << pad("p10", 11, true) << pad("p90", 11, true) << pad("iters", 7, true)
           << pad("supports", 9, true) << pad("x ref", 8, true) << pad("x floor", 8, true)
@@ -543,9 +571,9 @@ void print_table(const BenchReport& report, std::ostream& out) {
     }
     const double scale = r.suite == "scene" ? static_cast<double>(r.queries) : 1.0;
     out << pad(r.case_name, 28) << pad(r.algorithm + (r.via_registry ? "*" : ""), 16)
-        << pad(format_ns(r.ns_median * scale), 11, true) << pad(format_ns(r.ns_p10 * scale), 11, true)
-        << pad(format_ns(r.ns_p90 * scale), 11, true) << pad(fixed(r.iterations_mean, 1), 7, true)
-        << pad(fixed(r.support_calls_mean, 1), 9, true)
+        << pad(format_ns(r.ns_median * scale), 11, true)
+        << pad(format_ns(r.ns_p10 * scale), 11, true) << pad(format_ns(r.ns_p90 * scale), 11, true)
+        << pad(fixed(r.iterations_mean, 1), 7, true) << pad(fixed(r.support_calls_mean, 1), 9, true)
         << pad(format_ratio(r.ratio_to_reference), 8, true)
         << pad(format_ratio(r.ratio_to_floor), 8, true)
         << pad(format_ratio(r.ratio_to_full_scan), 8, true) << "  " << r.reference << "\n";
@@ -554,13 +582,15 @@ void print_table(const BenchReport& report, std::ostream& out) {
   out << "x ref: median time / the reference's median in the same case; x floor: median / "
          "(support calls x full-scan support cost of both shapes); x scan: hill climbing / the "
          "same algorithm's full scan.\n";
-  for (const std::string& n : report.notes) out << "note: " << n << "\n";
+  for (const std::string& n : report.notes)
+    out << "note: " << n << "\n";
 }
 
 void write_json(const BenchReport& report, std::ostream& out) {
   using Json = nlohmann::ordered_json;
   Json meta;
-  for (const auto& [k, v] : bench_environment()) meta[k] = v;
+  for (const auto& [k, v] : bench_environment())
+    meta[k] = v;
   meta["samples"] = report.config.samples;
   meta["batch_seconds"] = report.config.batch_seconds;
   meta["configurations"] = report.config.configurations;
@@ -610,7 +640,8 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
          "results/seed_tables.md`.\n";
   if (!cfg.published_source.empty()) out << "Published figures: " << cfg.published_source << "\n";
   out << "\n| | |\n|---|---|\n";
-  for (const auto& [k, v] : bench_environment()) out << "| " << k << " | " << v << " |\n";
+  for (const auto& [k, v] : bench_environment())
+    out << "| " << k << " | " << v << " |\n";
   out << "| samples x configurations | " << cfg.samples << " x " << cfg.configurations << " |\n";
 
   // Algorithms in order of first appearance.
@@ -633,9 +664,11 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
     out << "\n## Per pair (µs per query, median of " << cfg.samples
         << " interleaved samples; each cell: overlapping / separated)\n\n";
     out << "| pair | published |";
-    for (const std::string& a : algs) out << " " << a << " |";
+    for (const std::string& a : algs)
+      out << " " << a << " |";
     out << " speed-up of gjk-johnson (mean of both placements) |\n|---|---:|";
-    for (std::size_t i = 0; i < algs.size(); ++i) out << "---:|";
+    for (std::size_t i = 0; i < algs.size(); ++i)
+      out << "---:|";
     out << "---:|\n";
     for (const auto& [ia, ib] : kSeedPairs) {
       const std::string pair = std::string(kDemoShapes[ia].name) + "-" + kDemoShapes[ib].name;
@@ -653,7 +686,8 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
       const BenchRecord* o = find("seed", pair + " overlap", "gjk-johnson");
       const BenchRecord* s = find("seed", pair + " separated", "gjk-johnson");
       if (pub != cfg.published_pair_us.end() && o && s)
-        out << " " << fixed(pub->second * 1e3 / (0.5 * (o->ns_median + s->ns_median)), 0) << "x |\n";
+        out << " " << fixed(pub->second * 1e3 / (0.5 * (o->ns_median + s->ns_median)), 0)
+            << "x |\n";
       else
         out << " - |\n";
     }
@@ -662,9 +696,11 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
     out << "\n## All pairs of N objects (ms per full pass, median of " << cfg.samples
         << " samples)\n\n";
     out << "| objects | pairs | published |";
-    for (const std::string& a : algs) out << " " << a << " |";
+    for (const std::string& a : algs)
+      out << " " << a << " |";
     out << " speed-up of gjk-johnson |\n|---:|---:|---:|";
-    for (std::size_t i = 0; i < algs.size(); ++i) out << "---:|";
+    for (std::size_t i = 0; i < algs.size(); ++i)
+      out << "---:|";
     out << "---:|\n";
     for (int n = kSceneStep; n <= kSceneMaxObjects; n += kSceneStep) {
       const std::string name = std::to_string(n) + " objects";
@@ -688,7 +724,8 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
   }
   if (!report.notes.empty()) {
     out << "\n";
-    for (const std::string& n : report.notes) out << "- " << n << "\n";
+    for (const std::string& n : report.notes)
+      out << "- " << n << "\n";
   }
 }
 
@@ -720,9 +757,9 @@ BenchConfig load_bench_config(const std::string& path) {
   strings("algorithms", c.algorithms);
   for (const auto& [key, node] : t) {
     (void)node;
-    static const std::set<std::string> known = {"suites", "algorithms", "reference", "samples",
-                                                "batch_seconds", "configurations", "seed",
-                                                "cases", "published", "description"};
+    static const std::set<std::string> known = {
+        "suites",         "algorithms", "reference", "samples",   "batch_seconds",
+        "configurations", "seed",       "cases",     "published", "description"};
     if (!known.count(std::string(key.str()))) fail("unknown key '" + std::string(key.str()) + "'");
   }
   if (auto v = t["reference"].value<std::string>()) c.reference = *v;

@@ -31,8 +31,10 @@ InputError::InputError(std::string file, int line, std::string problem)
 namespace {
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+    s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -42,9 +44,11 @@ std::vector<std::string_view> fields(std::string_view s) {
   std::size_t i = 0;
   auto is_sep = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || c == ','; };
   while (i < s.size()) {
-    while (i < s.size() && is_sep(s[i])) ++i;
+    while (i < s.size() && is_sep(s[i]))
+      ++i;
     const std::size_t start = i;
-    while (i < s.size() && !is_sep(s[i])) ++i;
+    while (i < s.size() && !is_sep(s[i]))
+      ++i;
     if (i > start) out.push_back(s.substr(start, i - start));
   }
   return out;
@@ -71,7 +75,8 @@ Vec3 parse_point(const std::vector<std::string_view>& f, std::size_t first, cons
 
 std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -126,8 +131,9 @@ std::vector<Vec3> read_off(std::istream& in, const std::string& file) {
   std::vector<Vec3> points;
   for (std::size_t i = 0; i < static_cast<std::size_t>(nv); ++i, ++next) {
     if (next >= lines.size())
-      throw InputError(file, 0, "file ends after " + std::to_string(i) + " of " +
-                                    std::to_string(static_cast<long>(nv)) + " vertices");
+      throw InputError(file, 0,
+                       "file ends after " + std::to_string(i) + " of " +
+                           std::to_string(static_cast<long>(nv)) + " vertices");
     points.push_back(parse_point(fields(lines[next].second), 0, file, lines[next].first));
   }
   return points;
@@ -150,10 +156,12 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
   const auto& arr = j.at(cloud);
   if (!arr.is_array())
     throw std::invalid_argument(std::string("cloud ") + cloud + ": expected an array of points");
-  if (arr.empty()) throw std::invalid_argument(std::string("cloud ") + cloud + ": empty point cloud");
+  if (arr.empty())
+    throw std::invalid_argument(std::string("cloud ") + cloud + ": empty point cloud");
   std::vector<Vec3> out;
   out.reserve(arr.size());
-  for (std::size_t i = 0; i < arr.size(); ++i) out.push_back(json_point(arr[i], cloud, i));
+  for (std::size_t i = 0; i < arr.size(); ++i)
+    out.push_back(json_point(arr[i], cloud, i));
   return out;
 }
 
@@ -181,7 +189,8 @@ std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
   } else if (ext == ".obj") {
     points = read_obj(in, file);
   } else {
-    throw InputError(file, 0, "unknown point file extension '" + ext + "' (use .xyz, .off or .obj)");
+    throw InputError(file, 0,
+                     "unknown point file extension '" + ext + "' (use .xyz, .off or .obj)");
   }
   if (points.empty()) throw InputError(file, 0, "empty point cloud");
   return points;
@@ -231,7 +240,8 @@ std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path) {
 std::string case_to_json_line(const PointCase& c) {
   auto cloud = [](const std::vector<Vec3>& pts) {
     nlohmann::json arr = nlohmann::json::array();
-    for (const Vec3& p : pts) arr.push_back({p.x(), p.y(), p.z()});
+    for (const Vec3& p : pts)
+      arr.push_back({p.x(), p.y(), p.z()});
     return arr;
   };
   // nlohmann writes the shortest decimal that reads back as the same double.

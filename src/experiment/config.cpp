@@ -10,9 +10,9 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <optional>
-#include <iterator>
 #include <string_view>
 #include <system_error>
 
@@ -50,20 +50,27 @@ constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mix
                                                 "touching"};
 /// Shapes a family can name directly ("contact" and "file" are handled apart).
 constexpr ShapeKind kShapeKinds[] = {
-    ShapeKind::sphere_points,    ShapeKind::ball_points,      ShapeKind::cube_points,
-    ShapeKind::gaussian,         ShapeKind::box,              ShapeKind::cone,
-    ShapeKind::cylinder,         ShapeKind::uv_sphere,        ShapeKind::flat_points,
-    ShapeKind::collinear_points, ShapeKind::duplicate_points, ShapeKind::single_point,
+    ShapeKind::sphere_points,
+    ShapeKind::ball_points,
+    ShapeKind::cube_points,
+    ShapeKind::gaussian,
+    ShapeKind::box,
+    ShapeKind::cone,
+    ShapeKind::cylinder,
+    ShapeKind::uv_sphere,
+    ShapeKind::flat_points,
+    ShapeKind::collinear_points,
+    ShapeKind::duplicate_points,
+    ShapeKind::single_point,
     ShapeKind::sliver,
 };
 constexpr std::string_view kPairShapes[] = {"contact", "file"};
 constexpr ContactType kContactTypes[] = {
-    ContactType::face_face,   ContactType::edge_edge,     ContactType::vertex_face,
-    ContactType::edge_face,   ContactType::vertex_edge,   ContactType::vertex_vertex,
+    ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
+    ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
     ContactType::parallel_edges,
 };
-constexpr std::string_view kRotations[] = {"true", "false", "\"random\"", "\"none\"",
-                                           "\"axes\""};
+constexpr std::string_view kRotations[] = {"true", "false", "\"random\"", "\"none\"", "\"axes\""};
 
 template <typename Range>
 std::string join(const Range& items) {
@@ -77,30 +84,43 @@ std::string join(const Range& items) {
 
 std::string shape_names() {
   std::vector<std::string_view> names;
-  for (ShapeKind k : kShapeKinds) names.push_back(to_string(k));
-  for (std::string_view pair : kPairShapes) names.push_back(pair);
+  for (ShapeKind k : kShapeKinds)
+    names.push_back(to_string(k));
+  for (std::string_view pair : kPairShapes)
+    names.push_back(pair);
   return join(names);
 }
 
 std::string contact_names() {
   std::vector<std::string_view> names;
-  for (ContactType c : kContactTypes) names.push_back(to_string(c));
+  for (ContactType c : kContactTypes)
+    names.push_back(to_string(c));
   names.push_back("any");
   return join(names);
 }
 
 std::string_view type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    case toml::node_type::none: break;
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
   }
   return "nothing";
 }
@@ -108,7 +128,9 @@ std::string_view type_name(const toml::node& node) {
 int line_of(const toml::source_region& region) {
   return region.begin.line > 0 ? static_cast<int>(region.begin.line) : 1;
 }
-int line_of(const toml::node& node) { return line_of(node.source()); }
+int line_of(const toml::node& node) {
+  return line_of(node.source());
+}
 
 /// One TOML table being read: checks unknown keys up front, then reads typed, range-checked
 /// values and reports problems as ConfigError with the dotted key path and the value's line.
@@ -245,8 +267,8 @@ class Section {
     Interval interval;
     if (const toml::array* array = node->as_array()) {
       if (array->size() != 2)
-        fail(*node, key, "expected [lo, hi] (two numbers), got " + std::to_string(array->size()) +
-                             " elements");
+        fail(*node, key,
+             "expected [lo, hi] (two numbers), got " + std::to_string(array->size()) + " elements");
       interval.lo = number_value(*array->get(0), key);
       interval.hi = number_value(*array->get(1), key);
     } else if (node->is_number()) {
@@ -270,8 +292,9 @@ class Section {
     Interval interval;
     if (const toml::array* array = node->as_array()) {
       if (array->size() != 2)
-        fail(*node, key, "expected [lo, hi] (two integers), got " + std::to_string(array->size()) +
-                             " elements");
+        fail(
+            *node, key,
+            "expected [lo, hi] (two integers), got " + std::to_string(array->size()) + " elements");
       interval.lo = static_cast<double>(integer_value(*array->get(0), key, 1, kMaxVertices));
       interval.hi = static_cast<double>(integer_value(*array->get(1), key, 1, kMaxVertices));
       if (interval.lo > interval.hi)
@@ -334,11 +357,20 @@ ShapeKind read_shape(const Section& s, std::string_view key) {
 Interval default_vertices(ShapeKind kind) {
   double n = 32;
   switch (kind) {
-    case ShapeKind::box: n = 8; break;
-    case ShapeKind::cone: n = 33; break;
-    case ShapeKind::cylinder: n = 64; break;
-    case ShapeKind::uv_sphere: n = 482; break;
-    default: break;
+    case ShapeKind::box:
+      n = 8;
+      break;
+    case ShapeKind::cone:
+      n = 33;
+      break;
+    case ShapeKind::cylinder:
+      n = 64;
+      break;
+    case ShapeKind::uv_sphere:
+      n = 482;
+      break;
+    default:
+      break;
   }
   return {n, n};
 }
@@ -363,7 +395,8 @@ PlacementSpec read_placement(const Section& s, PlacementSpec base) {
 /// `contact = "..."` of a contact family.
 void read_contact(const Section& s, FamilySpec& f) {
   const auto name = s.string("contact");
-  if (!name) s.missing("contact", "missing (shape = \"contact\" needs it); valid: " + contact_names());
+  if (!name)
+    s.missing("contact", "missing (shape = \"contact\" needs it); valid: " + contact_names());
   if (*name == "any") {
     f.contact_any = true;
     f.contact = ContactType::face_face;
@@ -397,8 +430,8 @@ void read_stored_pairs(const Section& s, const std::string& experiment_file, Fam
   for (const CaseOrError& c : cases) {
     if (const auto* e = std::get_if<CaseError>(&c))
       s.fail(*s.find("path"), "path",
-             resolved.string() + ":" + std::to_string(e->line) + ": case '" + e->id + "': " +
-                 e->problem);
+             resolved.string() + ":" + std::to_string(e->line) + ": case '" + e->id +
+                 "': " + e->problem);
     const auto& p = std::get<PointCase>(c);
     f.stored.push_back({p.id, p.a, p.b});
   }
@@ -434,7 +467,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   for (std::string_view key : {"contact", "angle"})
     if (!is_contact && s.find(key))
       s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
-  if (!is_file && s.find("path")) s.fail(*s.find("path"), "path", "applies only to shape = \"file\"");
+  if (!is_file && s.find("path"))
+    s.fail(*s.find("path"), "path", "applies only to shape = \"file\"");
   for (std::string_view key : {"shape_a", "shape_b"})
     if (has_shape && s.find(key))
       s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
@@ -536,12 +570,15 @@ AlgorithmSpec read_algorithm(const Section& s) {
   const AlgorithmInfo* info = find_algorithm(*name);
   if (info && info->kind == AnswerKind::exact)
     s.fail(name_node, "name",
-           "'" + *name + "' is not listed as an algorithm: the exact oracle runs on every case "
-           "and is configured by [oracle] (enabled, depth); valid: " + join(valid));
+           "'" + *name +
+               "' is not listed as an algorithm: the exact oracle runs on every case "
+               "and is configured by [oracle] (enabled, depth); valid: " +
+               join(valid));
   if (!info) s.fail(name_node, "name", "unknown algorithm '" + *name + "'; valid: " + join(valid));
 
   std::vector<std::string_view> allowed = {"name", "label", "max_iterations"};
-  for (std::string_view key : own_option_keys(*name)) allowed.push_back(key);
+  for (std::string_view key : own_option_keys(*name))
+    allowed.push_back(key);
   s.allow_only(allowed, [&](std::string_view key) {
     std::vector<std::string_view> owners;
     for (std::string_view other : valid) {
@@ -558,7 +595,8 @@ AlgorithmSpec read_algorithm(const Section& s) {
   spec.label = *name;
   if (const auto label = s.string("label")) {
     // The result group's name: lets one algorithm run twice with different options.
-    if (label->empty() || label->find('/') != std::string::npos || label->find('@') != std::string::npos)
+    if (label->empty() || label->find('/') != std::string::npos ||
+        label->find('@') != std::string::npos)
       s.fail(*s.find("label"), "label", "must be non-empty and contain neither '/' nor '@'");
     spec.label = *label;
   }
@@ -597,8 +635,9 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
       const toml::node& v = *values->get(i);
       const double x = v.is_number() ? s.number_value(v, "values") : -1;
       if (!(*parameter == "offset" ? x >= 0 : x > 0))
-        s.fail(v, "values",
-               *parameter == "offset" ? "offsets must be numbers >= 0" : "scales must be numbers > 0");
+        s.fail(
+            v, "values",
+            *parameter == "offset" ? "offsets must be numbers >= 0" : "scales must be numbers > 0");
       sweep.values.push_back(x);
     }
     config.geometry_sweep = std::move(sweep);
@@ -641,8 +680,8 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
 bool valid_experiment_name(std::string_view name) {
   if (name.empty() || name.front() == '.') return false;
   return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '-' || c == '.';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-' || c == '.';
   });
 }
 
@@ -658,8 +697,8 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
   }
 
   const Section top(source, root, "", 1);
-  top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle",
-                  "timing", "placement", "family", "algorithm", "sweep", "trace"});
+  top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle", "timing",
+                  "placement", "family", "algorithm", "sweep", "trace"});
 
   ExperimentConfig config;
   config.source = source;
@@ -670,7 +709,8 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
   if (!valid_experiment_name(*name))
     top.fail(*top.find("name"), "name",
              "must be non-empty and use only letters, digits, '_', '-' and '.' (not leading), "
-             "got '" + *name + "'");
+             "got '" +
+                 *name + "'");
   config.name = *name;
 
   const auto seed = top.integer("seed", 0, std::numeric_limits<std::int64_t>::max());
@@ -722,8 +762,8 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     for (std::size_t j = 0; j < config.families.size(); ++j)
       if (config.families[j].name == family.name)
         s.fail(s.find("name") ? line_of(*s.find("name")) : s.header_line(), "name",
-               "family name '" + family.name + "' is already used by family[" +
-                   std::to_string(j) + "]; give each family a distinct name");
+               "family name '" + family.name + "' is already used by family[" + std::to_string(j) +
+                   "]; give each family a distinct name");
     config.families.push_back(std::move(family));
   }
 

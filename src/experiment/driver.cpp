@@ -7,8 +7,8 @@
 #include <ctime>
 #include <exception>
 #include <mutex>
-#include <stdexcept>
 #include <ostream>
+#include <stdexcept>
 #include <thread>
 
 #include "gjklab/exact/oracle.hpp"
@@ -32,8 +32,8 @@ double median(std::vector<double> v) {
 }
 
 ContactClass classify(const exact::OracleAnswer& answer, double band) {
-  if (!answer.intersect) return answer.distance <= band ? ContactClass::touching_band
-                                                        : ContactClass::separated;
+  if (!answer.intersect)
+    return answer.distance <= band ? ContactClass::touching_band : ContactClass::separated;
   if (answer.depth && *answer.depth <= band) return ContactClass::touching_band;
   return ContactClass::intersecting;
 }
@@ -187,8 +187,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   // stopped by its step limit fails by its termination anyway: its disagreement alone does
   // not pay for the depth, the costliest exact computation, in step-limit sweeps.)
   if (answer && answer->intersect && !answer->depth) {
-    const bool disagreement =
-        std::any_of(result.algorithms.begin(), result.algorithms.end(), [](const AlgorithmRecord& r) {
+    const bool disagreement = std::any_of(
+        result.algorithms.begin(), result.algorithms.end(), [](const AlgorithmRecord& r) {
           return !r.intersect && r.termination != Termination::step_limit;
         });
     if (disagreement) {
@@ -227,13 +227,14 @@ namespace {
 /// batches of options.checkpoint_cases on the worker threads, appends each batch in case
 /// order and checkpoints the archive. Stops early (archive incomplete) on a stop request or
 /// at options.stop_after.
-RunReport run_cases(const ExperimentConfig& config, const RunOptions& options, ArchiveWriter& writer,
-                    std::span<const CaseResult> prior, std::uint64_t total) {
+RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
+                    ArchiveWriter& writer, std::span<const CaseResult> prior, std::uint64_t total) {
   RunReport report;
   const int threads = std::max(1, options.threads.value_or(config.threads));
   const std::uint64_t batch_cases = std::max<std::uint64_t>(1, options.checkpoint_cases);
   std::vector<std::string> names;
-  for (const AlgorithmSpec& a : config.algorithms) names.push_back(a.label);
+  for (const AlgorithmSpec& a : config.algorithms)
+    names.push_back(a.label);
   SummaryBuilder summary(names);
   FamilySummaryBuilder by_family(config.result_family_names(), names);
   Progress progress(options.progress, options.live_progress, total);
@@ -288,7 +289,8 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options, A
       }
     };
     std::vector<std::jthread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    for (int t = 1; t < threads; ++t)
+      pool.emplace_back(worker);
     worker();
     pool.clear();  // joins
     // The archive keeps its temporary name: nothing that looks complete is left behind.
@@ -323,10 +325,9 @@ RunReport resume_experiment(const std::filesystem::path& path, const RunOptions&
   std::filesystem::path temporary = path;
   if (temporary.extension() != ".tmp") temporary += ".tmp";
   if (!std::filesystem::exists(temporary))
-    throw std::runtime_error(temporary.string() + ": no interrupted run to resume" +
-                             (std::filesystem::exists(path) ? " (" + path.string() +
-                                                                  " is a finished archive)"
-                                                            : ""));
+    throw std::runtime_error(
+        temporary.string() + ": no interrupted run to resume" +
+        (std::filesystem::exists(path) ? " (" + path.string() + " is a finished archive)" : ""));
   Archive prior = read_archive(temporary);
   if (prior.complete) throw std::runtime_error(temporary.string() + " is already complete");
   const ExperimentConfig config =

@@ -67,7 +67,9 @@ RngPtr make_case_rng(std::uint64_t seed, std::uint64_t case_id) {
 }
 
 /// Uniform in [0, 1).
-double uniform(gsl_rng* r) { return gsl_rng_uniform(r); }
+double uniform(gsl_rng* r) {
+  return gsl_rng_uniform(r);
+}
 
 /// Log-uniform in [lo, hi] (0 < lo <= hi).
 double log_uniform(gsl_rng* r, const Interval& range) {
@@ -107,7 +109,8 @@ Mat3 random_rotation(gsl_rng* r) {
 
 std::size_t draw_family(gsl_rng* r, const std::vector<FamilySpec>& families) {
   double total = 0;
-  for (const FamilySpec& f : families) total += f.weight;
+  for (const FamilySpec& f : families)
+    total += f.weight;
   const double target = uniform(r) * total;
   double cumulative = 0;
   for (std::size_t i = 0; i < families.size(); ++i) {
@@ -119,7 +122,8 @@ std::size_t draw_family(gsl_rng* r, const std::vector<FamilySpec>& families) {
 
 Vec3 vertex_mean(const std::vector<Vec3>& cloud) {
   Vec3 sum = Vec3::Zero();
-  for (const Vec3& p : cloud) sum += p;
+  for (const Vec3& p : cloud)
+    sum += p;
   return sum / static_cast<double>(cloud.size());
 }
 
@@ -131,11 +135,13 @@ Mat3 random_axis_rotation(gsl_rng* r) {
   const unsigned k = static_cast<unsigned>(gsl_rng_uniform_int(r, 6));
   const int parity = k < 3 ? 1 : -1;
   double signs[3];
-  for (double& sgn : signs) sgn = gsl_rng_uniform_int(r, 2) ? 1.0 : -1.0;
+  for (double& sgn : signs)
+    sgn = gsl_rng_uniform_int(r, 2) ? 1.0 : -1.0;
   // The product of the signs must equal the permutation's parity for determinant +1.
   if (signs[0] * signs[1] * signs[2] != parity) signs[2] = -signs[2];
   Mat3 m = Mat3::Zero();
-  for (int row = 0; row < 3; ++row) m(row, kPermutations[k][row]) = signs[row];
+  for (int row = 0; row < 3; ++row)
+    m(row, kPermutations[k][row]) = signs[row];
   return m;
 }
 
@@ -143,9 +149,12 @@ Mat3 random_axis_rotation(gsl_rng* r) {
 /// permutation).
 Mat3 draw_rotation(gsl_rng* r, Rotation mode) {
   switch (mode) {
-    case Rotation::none: return Mat3::Identity();
-    case Rotation::random: return random_rotation(r);
-    case Rotation::axes: return random_axis_rotation(r);
+    case Rotation::none:
+      return Mat3::Identity();
+    case Rotation::random:
+      return random_rotation(r);
+    case Rotation::axes:
+      return random_axis_rotation(r);
   }
   return Mat3::Identity();
 }
@@ -157,12 +166,15 @@ std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec
   const double aspect = kind == ShapeKind::sliver ? log_uniform(r, family.aspect) : 1.0;
   std::vector<Vec3> cloud = generate_shape(kind, n, r, aspect);
   const Vec3 mean = vertex_mean(cloud);
-  for (Vec3& p : cloud) p -= mean;
+  for (Vec3& p : cloud)
+    p -= mean;
   if (family.rotation != Rotation::none) {
     const Mat3 rotation = draw_rotation(r, family.rotation);
-    for (Vec3& p : cloud) p = rotation * p;
+    for (Vec3& p : cloud)
+      p = rotation * p;
   }
-  for (Vec3& p : cloud) p *= scale;
+  for (Vec3& p : cloud)
+    p *= scale;
   return cloud;
 }
 
@@ -182,7 +194,8 @@ std::vector<Vec3> box_below() {
   std::vector<Vec3> v;
   for (double x : {-1.0, 1.0})
     for (double y : {-1.0, 1.0})
-      for (double z : {-2.0, 0.0}) v.emplace_back(x, y, z);
+      for (double z : {-2.0, 0.0})
+        v.emplace_back(x, y, z);
   return v;
 }
 
@@ -191,14 +204,15 @@ std::vector<Vec3> box_above(double dx, double dy) {
   std::vector<Vec3> v;
   for (double x : {-1.0, 1.0})
     for (double y : {-1.0, 1.0})
-      for (double z : {0.0, 2.0}) v.emplace_back(dx + x, dy + y, z);
+      for (double z : {0.0, 2.0})
+        v.emplace_back(dx + x, dy + y, z);
   return v;
 }
 
 /// Triangular prism with its ridge along y at x = 0, z = 0, widening downwards.
 std::vector<Vec3> roof_below() {
-  return {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(-1, -1, -1), Vec3(1, -1, -1),
-          Vec3(-1, 1, -1), Vec3(1, 1, -1)};
+  return {Vec3(0, -1, 0),  Vec3(0, 1, 0),   Vec3(-1, -1, -1),
+          Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(1, 1, -1)};
 }
 
 /// Triangular prism with its ridge along `axis` (unit, in the plane z = 0) through (dx, dy, 0),
@@ -206,15 +220,20 @@ std::vector<Vec3> roof_below() {
 std::vector<Vec3> ridge_above(const Vec3& axis, double dx, double dy) {
   const Vec3 across(-axis.y(), axis.x(), 0);
   const Vec3 c(dx, dy, 0);
-  return {c - axis, c + axis, c - axis - across + Vec3(0, 0, 1), c - axis + across + Vec3(0, 0, 1),
-          c + axis - across + Vec3(0, 0, 1), c + axis + across + Vec3(0, 0, 1)};
+  return {c - axis,
+          c + axis,
+          c - axis - across + Vec3(0, 0, 1),
+          c - axis + across + Vec3(0, 0, 1),
+          c + axis - across + Vec3(0, 0, 1),
+          c + axis + across + Vec3(0, 0, 1)};
 }
 
 /// Square pyramid with its apex at (dx, dy, 0) and base at z = ±1 (sign: +1 above).
 std::vector<Vec3> pyramid(double dx, double dy, double side) {
   std::vector<Vec3> v{Vec3(dx, dy, 0)};
   for (double x : {-1.0, 1.0})
-    for (double y : {-1.0, 1.0}) v.emplace_back(dx + x, dy + y, side);
+    for (double y : {-1.0, 1.0})
+      v.emplace_back(dx + x, dy + y, side);
   return v;
 }
 
@@ -245,7 +264,8 @@ ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family
       const Vec3 axis(-std::sin(theta), std::cos(theta), 0);
       return {roof_below(), ridge_above(axis, 0, 0), ShapeKind::prism, ShapeKind::prism};
     }
-    case ContactType::none: break;
+    case ContactType::none:
+      break;
   }
   throw std::invalid_argument("build_contact: not a contact family");
 }
@@ -256,13 +276,15 @@ constexpr ContactType kExactContacts[] = {ContactType::face_face,   ContactType:
 
 double max_projection(const std::vector<Vec3>& cloud, const Vec3& u) {
   double m = -std::numeric_limits<double>::infinity();
-  for (const Vec3& p : cloud) m = std::max(m, p.dot(u));
+  for (const Vec3& p : cloud)
+    m = std::max(m, p.dot(u));
   return m;
 }
 
 double min_projection(const std::vector<Vec3>& cloud, const Vec3& u) {
   double m = std::numeric_limits<double>::infinity();
-  for (const Vec3& p : cloud) m = std::min(m, p.dot(u));
+  for (const Vec3& p : cloud)
+    m = std::min(m, p.dot(u));
   return m;
 }
 
@@ -279,7 +301,8 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, do
   switch (kind) {
     case ShapeKind::sphere_points:
       cloud.reserve(n);
-      for (int i = 0; i < n; ++i) cloud.push_back(unit_vector(r));
+      for (int i = 0; i < n; ++i)
+        cloud.push_back(unit_vector(r));
       break;
     case ShapeKind::ball_points:
       // Rejection from the cube [-1, 1)^3 (accepts π/6 ≈ 52%); the test is the same squared
@@ -326,12 +349,14 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, do
       break;
     case ShapeKind::collinear_points:
       cloud.reserve(n);
-      for (int i = 0; i < n; ++i) cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
+      for (int i = 0; i < n; ++i)
+        cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
       break;
     case ShapeKind::duplicate_points: {
       const Vec3 distinct[3] = {unit_vector(r), unit_vector(r), unit_vector(r)};
       cloud.reserve(n);
-      for (int i = 0; i < n; ++i) cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
+      for (int i = 0; i < n; ++i)
+        cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
       break;
     }
     case ShapeKind::single_point:
@@ -390,7 +415,8 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
   const Placement mode = draw_placement(r, placement);
   if (mode == Placement::random) {
     const double half_width = placement.spread * size;
-    for (int k = 0; k < 3; ++k) translation[k] = (2 * uniform(r) - 1) * half_width;
+    for (int k = 0; k < 3; ++k)
+      translation[k] = (2 * uniform(r) - 1) * half_width;
   } else {
     const Vec3 u = unit_vector(r);
     // gap > 0: B's extent along u starts gap·size after A's; gap < 0: they overlap by −gap·size.
@@ -400,7 +426,8 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
     rec.intended_gap = gap;
     out.direction = u;
   }
-  for (Vec3& p : out.b) p += translation;
+  for (Vec3& p : out.b)
+    p += translation;
   rec.placement = mode;
 }
 
@@ -408,27 +435,31 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
 /// along the contact normal as the placement says, then scaled.
 void place_contact_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
   CaseRecord& rec = out.record;
-  const ContactType type =
-      family.contact_any ? kExactContacts[gsl_rng_uniform_int(r, std::size(kExactContacts))]
-                         : family.contact;
+  const ContactType type = family.contact_any
+                               ? kExactContacts[gsl_rng_uniform_int(r, std::size(kExactContacts))]
+                               : family.contact;
   ContactPair pair = build_contact(type, r, family);
   rec.shape_a = pair.shape_a;
   rec.shape_b = pair.shape_b;
   // Scaling B about the contact point (the origin) keeps the contact.
   const double ratio = log_uniform(r, family.scale_ratio);
-  for (Vec3& p : pair.b) p *= ratio;
+  for (Vec3& p : pair.b)
+    p *= ratio;
   const Mat3 turn = random_axis_rotation(r);
   for (auto* cloud : {&pair.a, &pair.b})
-    for (Vec3& p : *cloud) p = turn * p;
+    for (Vec3& p : *cloud)
+      p = turn * p;
   const Vec3 normal = turn * Vec3::UnitZ();
 
   const Placement mode = draw_placement(r, family.placement);
   const double gap = draw_gap(r, mode, family.placement);
   const double shift = gap * pair_size(pair.a, pair.b);
   if (shift != 0)
-    for (Vec3& p : pair.b) p += shift * normal;
+    for (Vec3& p : pair.b)
+      p += shift * normal;
   for (auto* cloud : {&pair.a, &pair.b})
-    for (Vec3& p : *cloud) p *= family.scale;
+    for (Vec3& p : *cloud)
+      p *= family.scale;
   out.a = std::move(pair.a);
   out.b = std::move(pair.b);
   out.direction = normal;
@@ -455,10 +486,12 @@ void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
   if (sweep.parameter == "offset") {
     const Vec3 t = value * unit_vector(r);
     for (auto* cloud : {&out.a, &out.b})
-      for (Vec3& p : *cloud) p += t;
+      for (Vec3& p : *cloud)
+        p += t;
   } else {
     for (auto* cloud : {&out.a, &out.b})
-      for (Vec3& p : *cloud) p *= value;
+      for (Vec3& p : *cloud)
+        p *= value;
     out.record.scale *= value;
   }
 }
@@ -496,7 +529,8 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   if (family.offset.hi > 0) {
     const Vec3 t = log_uniform(r, family.offset) * unit_vector(r);
     for (auto* cloud : {&out.a, &out.b})
-      for (Vec3& p : *cloud) p += t;
+      for (Vec3& p : *cloud)
+        p += t;
   }
 
   if (config.geometry_sweep) {

@@ -52,11 +52,10 @@ void write_attr(const Context& cx, hid_t obj, const std::string& obj_path, const
   const std::string label = attr_label(obj_path, name);
   // An existing attribute (a checkpoint counter) is overwritten in place: same type and shape.
   const bool exists = cx.check_tri(H5Aexists(obj, name.c_str()), "cannot look up " + label);
-  Handle attr = exists ? cx.handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose,
-                                   "cannot open " + label)
-                       : cx.handle(H5Acreate2(obj, name.c_str(), file_type, space, H5P_DEFAULT,
-                                              H5P_DEFAULT),
-                                   H5Aclose, "cannot create " + label);
+  Handle attr =
+      exists ? cx.handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "cannot open " + label)
+             : cx.handle(H5Acreate2(obj, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT),
+                         H5Aclose, "cannot create " + label);
   if (H5Sget_simple_extent_npoints(space) > 0)  // an empty array has nothing to write
     cx.check(H5Awrite(attr.get(), mem_type, data), "cannot write " + label);
   cx.check(attr.close(), "cannot close " + label);
@@ -277,9 +276,9 @@ void read_all(const Context& cx, const OpenDataset& d, hid_t mem_type, void* buf
     return;
   }
   const auto [file_space, mem_space] = row_spaces(cx, d);
-  cx.check(H5Dread(d.dataset.get(), mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT,
-                   buffer),
-           "cannot read dataset " + d.path);
+  cx.check(
+      H5Dread(d.dataset.get(), mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, buffer),
+      "cannot read dataset " + d.path);
 }
 
 std::vector<std::string> read_string_column(const Context& cx, hid_t group,

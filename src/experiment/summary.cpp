@@ -61,7 +61,8 @@ RunSummary SummaryBuilder::build() const {
     a.distances = c.rel_errors.size();
     a.rel_error_median = quantile(c.rel_errors, 0.5);
     a.rel_error_p99 = quantile(c.rel_errors, 0.99);
-    a.rel_error_max = c.rel_errors.empty() ? 0 : *std::max_element(c.rel_errors.begin(), c.rel_errors.end());
+    a.rel_error_max =
+        c.rel_errors.empty() ? 0 : *std::max_element(c.rel_errors.begin(), c.rel_errors.end());
     a.iterations_mean = a.cases ? c.iteration_sum / static_cast<double>(a.cases) : 0;
     a.timed = c.times.size();
     a.time_ns_median = quantile(c.times, 0.5);
@@ -82,14 +83,13 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   int width = 14;
   for (const AlgorithmSummary& a : s.algorithms)
     width = std::max(width, static_cast<int>(std::min<std::size_t>(a.name.size(), 64)));
-  std::snprintf(line, sizeof line, "%-*s %8s %8s %10s %10s %10s %8s %6s %10s\n", width,
-                "algorithm", "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean",
-                "it_max", "ns/query");
+  std::snprintf(line, sizeof line, "%-*s %8s %8s %10s %10s %10s %8s %6s %10s\n", width, "algorithm",
+                "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean", "it_max", "ns/query");
   out << line;
   for (const AlgorithmSummary& a : s.algorithms) {
     const bool has_distance = a.distances > 0;
-    std::snprintf(line, sizeof line, "%-*s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n",
-                  width, a.name.c_str(), static_cast<unsigned long long>(a.cases),
+    std::snprintf(line, sizeof line, "%-*s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n", width,
+                  a.name.c_str(), static_cast<unsigned long long>(a.cases),
                   static_cast<unsigned long long>(a.wrong_booleans),
                   has_distance ? format("%.2e", a.rel_error_median).c_str() : "-",
                   has_distance ? format("%.2e", a.rel_error_p99).c_str() : "-",
@@ -143,8 +143,8 @@ std::vector<std::pair<std::string, RunSummary>> FamilySummaryBuilder::build() co
 void print_family_table(std::ostream& out,
                         const std::vector<std::pair<std::string, RunSummary>>& families) {
   char line[256];
-  std::snprintf(line, sizeof line, "%-24s %-14s %7s %7s %10s  %s\n", "family", "algorithm",
-                "cases", "wrong", "err_max", "not converged");
+  std::snprintf(line, sizeof line, "%-24s %-14s %7s %7s %10s  %s\n", "family", "algorithm", "cases",
+                "wrong", "err_max", "not converged");
   out << line;
   for (const auto& [family, s] : families) {
     for (const AlgorithmSummary& a : s.algorithms) {

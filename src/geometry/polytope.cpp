@@ -25,7 +25,8 @@ namespace {
 
 Vec3 mean_of(std::span<const Vec3> cloud) {
   Vec3 sum = Vec3::Zero();
-  for (const Vec3& v : cloud) sum += v;
+  for (const Vec3& v : cloud)
+    sum += v;
   return sum / static_cast<double>(cloud.size());
 }
 
@@ -58,7 +59,8 @@ using V4dLoad = double __attribute__((vector_size(32), may_alias));
     const Polytope::Block& blk = blocks[k];
     // The same operations in the same order as Eigen's Vec3::dot: (x·dx + y·dy) + z·dz.
     const V4d d0 = (GJKLAB_LOAD4(blk.x) * vx + GJKLAB_LOAD4(blk.y) * vy) + GJKLAB_LOAD4(blk.z) * vz;
-    const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * vx + GJKLAB_LOAD4(blk.y + 4) * vy) + GJKLAB_LOAD4(blk.z + 4) * vz;
+    const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * vx + GJKLAB_LOAD4(blk.y + 4) * vy) +
+                   GJKLAB_LOAD4(blk.z + 4) * vz;
     const V4i g0 = d0 > m0, g1 = d1 > m1;
     m0 = g0 ? d0 : m0;
     m1 = g1 ? d1 : m1;
@@ -178,9 +180,8 @@ std::size_t Polytope::scan_support_index(const Vec3& d) const {
 void Polytope::enable_hill_climbing(const std::vector<std::vector<int>>& adjacency) {
   const std::size_t n = vertices_.size();
   if (adjacency.size() != n)
-    throw std::invalid_argument("hill climbing: adjacency has " +
-                                std::to_string(adjacency.size()) + " rows for " +
-                                std::to_string(n) + " vertices");
+    throw std::invalid_argument("hill climbing: adjacency has " + std::to_string(adjacency.size()) +
+                                " rows for " + std::to_string(n) + " vertices");
   auto graph = std::make_shared<HullGraph>();
   graph->offsets.reserve(n + 1);
   graph->offsets.push_back(0);
@@ -233,8 +234,8 @@ void Polytope::build_start_table() {
     if (g.offsets[i + 1] > g.offsets[i]) on_graph.push_back(static_cast<std::uint32_t>(i));
   if (on_graph.empty()) on_graph.push_back(0);
   // About n/24 cells per face, at most 16 × 16: walks from a cell's vertex take a step or two.
-  const int r = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(on_graph.size()) / 24)),
-                           1, 16);
+  const int r =
+      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(on_graph.size()) / 24)), 1, 16);
   table_resolution_ = r;
   start_table_.assign(static_cast<std::size_t>(6 * r * r), on_graph[0]);
   for (int face = 0; face < 6; ++face) {
@@ -260,7 +261,9 @@ void Polytope::build_start_table() {
   hint_.store(start_table_[0], std::memory_order_relaxed);
 }
 
-void Polytope::disable_hill_climbing() { graph_.reset(); }
+void Polytope::disable_hill_climbing() {
+  graph_.reset();
+}
 
 std::size_t Polytope::climb_support_index(const Vec3& d) const {
   const HullGraph& g = *graph_;
@@ -300,7 +303,8 @@ std::size_t Polytope::climb_support_index(const Vec3& d) const {
 Polytope Polytope::transformed(const Pose& pose) const {
   std::vector<Vec3> moved;
   moved.reserve(vertices_.size());
-  for (const Vec3& v : vertices_) moved.push_back(pose.apply(v));
+  for (const Vec3& v : vertices_)
+    moved.push_back(pose.apply(v));
   Polytope out(std::move(moved));
   out.graph_ = graph_;
   if (graph_) out.build_start_table();
@@ -310,7 +314,8 @@ Polytope Polytope::transformed(const Pose& pose) const {
 Polytope Polytope::scaled(double factor) const {
   std::vector<Vec3> scaled_vertices;
   scaled_vertices.reserve(vertices_.size());
-  for (const Vec3& v : vertices_) scaled_vertices.push_back(factor * v);
+  for (const Vec3& v : vertices_)
+    scaled_vertices.push_back(factor * v);
   Polytope out(std::move(scaled_vertices));
   out.graph_ = graph_;
   if (graph_) out.build_start_table();
@@ -327,7 +332,9 @@ static double cloud_diagonal(std::span<const Vec3> cloud) {
   return (hi - lo).norm();
 }
 
-double Polytope::bounding_box_diagonal() const { return cloud_diagonal(vertices_); }
+double Polytope::bounding_box_diagonal() const {
+  return cloud_diagonal(vertices_);
+}
 
 double pair_size(std::span<const Vec3> a, std::span<const Vec3> b) {
   return std::max(cloud_diagonal(a), cloud_diagonal(b));

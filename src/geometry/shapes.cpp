@@ -50,7 +50,8 @@ Polytope uv_sphere(int vertices) {
   if (vertices < 6) throw std::invalid_argument("uv sphere needs at least 6 vertices");
   // Largest even segment count s with 2 + (s/2 − 1)·s ≤ vertices.
   int segments = 4;
-  while (2 + (segments / 2) * (segments + 2) <= vertices) segments += 2;
+  while (2 + (segments / 2) * (segments + 2) <= vertices)
+    segments += 2;
   const int rings = segments / 2 - 1;
   std::vector<Vec3> v{Vec3(0, 0, kRadius), Vec3(0, 0, -kRadius)};
   for (int r = 1; r <= rings; ++r) {

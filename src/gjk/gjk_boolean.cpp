@@ -5,14 +5,19 @@ namespace gjklab::detail {
 namespace {
 
 /// x and y point into the same open half-space.
-bool same_side(const Vec3& x, const Vec3& y) { return x.dot(y) > 0; }
+bool same_side(const Vec3& x, const Vec3& y) {
+  return x.dot(y) > 0;
+}
 
 /// Direction perpendicular to edge e, in the plane of e and the origin offset o, towards o.
-Vec3 towards_origin_from_edge(const Vec3& e, const Vec3& o) { return e.cross(o).cross(e); }
+Vec3 towards_origin_from_edge(const Vec3& e, const Vec3& o) {
+  return e.cross(o).cross(e);
+}
 
 void set(BooleanSimplex& s, std::initializer_list<Vec3> points) {
   s.size = 0;
-  for (const Vec3& p : points) s.points[s.size++] = p;
+  for (const Vec3& p : points)
+    s.points[s.size++] = p;
 }
 
 bool segment_case(BooleanSimplex& s, Vec3& d) {
@@ -77,9 +82,12 @@ bool tetrahedron_case(BooleanSimplex& s, Vec3& d) {
 
 bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction) {
   switch (simplex.size) {
-    case 2: return segment_case(simplex, direction);
-    case 3: return triangle_case(simplex, direction);
-    default: return tetrahedron_case(simplex, direction);
+    case 2:
+      return segment_case(simplex, direction);
+    case 3:
+      return triangle_case(simplex, direction);
+    default:
+      return tetrahedron_case(simplex, direction);
   }
 }
 

@@ -8,8 +8,8 @@ namespace {
 
 /// The 15 non-empty subsets of {0,1,2,3}, ordered by size and then by mask value: the order
 /// in which Johnson's sub-algorithm tries them.
-constexpr std::array<std::uint8_t, 15> kSubsetsBySize = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12,
-                                                         7, 11, 13, 14, 15};
+constexpr std::array<std::uint8_t, 15> kSubsetsBySize = {1,  2,  4, 8,  3,  5,  6, 9,
+                                                         10, 12, 7, 11, 13, 14, 15};
 
 constexpr int first_index(std::uint8_t mask) {
   return std::countr_zero(static_cast<unsigned>(mask));
@@ -99,32 +99,51 @@ JohnsonSolution closest_point(const std::array<Vec3, 4>& y) {
 JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
   JohnsonCofactors c;
   switch (count) {
-    case 1: fill_cofactors<1>(y, c); break;
-    case 2: fill_cofactors<2>(y, c); break;
-    case 3: fill_cofactors<3>(y, c); break;
-    case 4: fill_cofactors<4>(y, c); break;
-    default: break;  // no points: no subsets
+    case 1:
+      fill_cofactors<1>(y, c);
+      break;
+    case 2:
+      fill_cofactors<2>(y, c);
+      break;
+    case 3:
+      fill_cofactors<3>(y, c);
+      break;
+    case 4:
+      fill_cofactors<4>(y, c);
+      break;
+    default:
+      break;  // no points: no subsets
   }
   return c;
 }
 
 bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count) {
   switch (count) {
-    case 1: return subset_is_valid<1>(c, subset);
-    case 2: return subset_is_valid<2>(c, subset);
-    case 3: return subset_is_valid<3>(c, subset);
-    case 4: return subset_is_valid<4>(c, subset);
-    default: return subset_is_valid<0>(c, subset);
+    case 1:
+      return subset_is_valid<1>(c, subset);
+    case 2:
+      return subset_is_valid<2>(c, subset);
+    case 3:
+      return subset_is_valid<3>(c, subset);
+    case 4:
+      return subset_is_valid<4>(c, subset);
+    default:
+      return subset_is_valid<0>(c, subset);
   }
 }
 
 JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
   switch (count) {
-    case 1: return closest_point<1>(y);
-    case 2: return closest_point<2>(y);
-    case 3: return closest_point<3>(y);
-    case 4: return closest_point<4>(y);
-    default: return {};  // no points: nothing found
+    case 1:
+      return closest_point<1>(y);
+    case 2:
+      return closest_point<2>(y);
+    case 3:
+      return closest_point<3>(y);
+    case 4:
+      return closest_point<4>(y);
+    default:
+      return {};  // no points: nothing found
   }
 }
 

@@ -7,7 +7,9 @@ namespace gjklab {
 namespace {
 
 /// Montanari et al.'s compareSigns: true when both are > 0 or both are < 0 (zero and NaN fail).
-bool same_sign(double a, double b) { return (a > 0 && b > 0) || (a < 0 && b < 0); }
+bool same_sign(double a, double b) {
+  return (a > 0 && b > 0) || (a < 0 && b < 0);
+}
 
 SubsimplexSolution single_point(const std::array<Vec3, 4>& y, int i) {
   SubsimplexSolution s;
@@ -102,7 +104,9 @@ SubsimplexSolution s2d(const std::array<Vec3, 4>& y, int i, int j, int k) {
 }
 
 /// det[p q r] for columns p, q, r.
-double det3(const Vec3& p, const Vec3& q, const Vec3& r) { return p.dot(q.cross(r)); }
+double det3(const Vec3& p, const Vec3& q, const Vec3& r) {
+  return p.dot(q.cross(r));
+}
 
 /// S3D: tetrahedron y_0 … y_3.
 SubsimplexSolution s3d(const std::array<Vec3, 4>& y) {
@@ -111,7 +115,8 @@ SubsimplexSolution s3d(const std::array<Vec3, 4>& y) {
                                    -det3(y[0], y[1], y[3]), det3(y[0], y[1], y[2])};
   const double det_m = c[0] + c[1] + c[2] + c[3];
   bool inside = true;
-  for (double cj : c) inside = inside && same_sign(det_m, cj);
+  for (double cj : c)
+    inside = inside && same_sign(det_m, cj);
   if (inside) return weighted<4>(y, {0, 1, 2, 3}, c, det_m);
   // Faces opposite the failing vertices (all four when det M = 0: a flat tetrahedron's hull
   // is the union of its faces).
@@ -130,10 +135,14 @@ SubsimplexSolution s3d(const std::array<Vec3, 4>& y) {
 
 SubsimplexSolution signed_volumes_closest_point(const std::array<Vec3, 4>& y, int count) {
   switch (count) {
-    case 1: return single_point(y, 0);
-    case 2: return s1d(y, 0, 1);
-    case 3: return s2d(y, 0, 1, 2);
-    case 4: return s3d(y);
+    case 1:
+      return single_point(y, 0);
+    case 2:
+      return s1d(y, 0, 1);
+    case 3:
+      return s2d(y, 0, 1, 2);
+    case 4:
+      return s3d(y);
   }
   return {};
 }

@@ -95,7 +95,9 @@ SubsimplexSolution triangle(const std::array<Vec3, 4>& y, int i, int j, int k) {
 }
 
 /// Strictly opposite signs, without forming the product (which could under- or overflow).
-bool opposite_signs(double p, double q) { return (p < 0 && q > 0) || (p > 0 && q < 0); }
+bool opposite_signs(double p, double q) {
+  return (p < 0 && q > 0) || (p > 0 && q < 0);
+}
 
 /// Closest point of the tetrahedron y_0 … y_3 (Ericson 5.1.6, ClosestPtPointTetrahedron).
 SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
@@ -127,7 +129,8 @@ SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
   s.weights[2] = ab.dot(ao.cross(ad)) / volume;
   s.weights[3] = ab.dot(ac.cross(ao)) / volume;
   s.weights[0] = 1 - s.weights[1] - s.weights[2] - s.weights[3];
-  for (int i = 0; i < 4; ++i) s.closest += s.weights[i] * y[i];
+  for (int i = 0; i < 4; ++i)
+    s.closest += s.weights[i] * y[i];
   return s;
 }
 
@@ -136,11 +139,20 @@ SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
 SubsimplexSolution voronoi_closest_point(const std::array<Vec3, 4>& y, int count) {
   SubsimplexSolution s;
   switch (count) {
-    case 1: s = single_point(y, 0); break;
-    case 2: s = segment(y, 0, 1); break;
-    case 3: s = triangle(y, 0, 1, 2); break;
-    case 4: s = tetrahedron(y); break;
-    default: return s;
+    case 1:
+      s = single_point(y, 0);
+      break;
+    case 2:
+      s = segment(y, 0, 1);
+      break;
+    case 3:
+      s = triangle(y, 0, 1, 2);
+      break;
+    case 4:
+      s = tetrahedron(y);
+      break;
+    default:
+      return s;
   }
   // Points with weight exactly 0 (the origin on a region boundary) do not contribute: drop
   // them to keep the sub-simplex minimal (GJK reads a kept tetrahedron as contact).

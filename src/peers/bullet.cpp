@@ -22,7 +22,8 @@ struct BulletShape::Impl {
 
 BulletShape::BulletShape(const Polytope& cloud) : impl_(std::make_unique<Impl>()) {
   impl_->hull = std::make_unique<btConvexHullShape>();
-  for (const Vec3& v : cloud.vertices()) impl_->hull->addPoint(btVector3(v.x(), v.y(), v.z()), false);
+  for (const Vec3& v : cloud.vertices())
+    impl_->hull->addPoint(btVector3(v.x(), v.y(), v.z()), false);
   impl_->hull->recalcLocalAabb();
   impl_->hull->setMargin(0);
 }

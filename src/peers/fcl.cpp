@@ -24,7 +24,8 @@ FclShape::FclShape(const Polytope& cloud) : FclShape(exact::hull_features(cloud.
 FclShape::FclShape(const exact::HullFeatures& hull) : impl_(std::make_unique<Impl>()) {
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
   vertices->reserve(hull.vertices.size());
-  for (const Vec3& v : hull.vertices) vertices->emplace_back(v.x(), v.y(), v.z());
+  for (const Vec3& v : hull.vertices)
+    vertices->emplace_back(v.x(), v.y(), v.z());
   // FCL's face encoding: for each face its vertex count, then its indices (counter-clockwise
   // seen from outside).
   auto faces = std::make_shared<std::vector<int>>();
@@ -34,9 +35,9 @@ FclShape::FclShape(const exact::HullFeatures& hull) : impl_(std::make_unique<Imp
   }
   impl_->vertices = vertices;
   impl_->faces = faces;
-  impl_->convex = std::make_unique<fcl::Convexd>(impl_->vertices,
-                                                 static_cast<int>(hull.faces.size()),
-                                                 impl_->faces, /*throw_if_invalid=*/false);
+  impl_->convex =
+      std::make_unique<fcl::Convexd>(impl_->vertices, static_cast<int>(hull.faces.size()),
+                                     impl_->faces, /*throw_if_invalid=*/false);
 }
 
 FclShape::~FclShape() = default;
@@ -111,7 +112,9 @@ PenetrationResult fcl_query(const FclShape& a, const FclShape& b, FclSolver solv
   return run(s, ca, cb, true);
 }
 
-std::string fcl_version() { return FCL_VERSION; }
+std::string fcl_version() {
+  return FCL_VERSION;
+}
 
 std::string fcl_settings() {
   const fcl::detail::GJKSolver_libccdd l;
@@ -119,8 +122,8 @@ std::string fcl_settings() {
   std::ostringstream s;
   s.precision(17);
   s << "libccd: collision_tolerance=" << l.collision_tolerance
-    << " distance_tolerance=" << l.distance_tolerance << "; indep: gjk_tolerance="
-    << i.gjk_tolerance << " epa_tolerance=" << i.epa_tolerance;
+    << " distance_tolerance=" << l.distance_tolerance
+    << "; indep: gjk_tolerance=" << i.gjk_tolerance << " epa_tolerance=" << i.epa_tolerance;
   return s.str();
 }
 

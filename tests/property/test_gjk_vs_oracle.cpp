@@ -41,7 +41,7 @@ TEST_CASE("GJK agrees with the exact oracle on 2000 seeded random pairs", "[prop
     // Half separated by 1e-6 … 10 sizes (log-uniform), a quarter overlapping by 1e-6 … 0.1
     // sizes (log-uniform), a quarter by 0.1 … 1 size (uniform): projections that overlap a
     // little often leave the hulls apart, so the deep quarter makes sure both answers occur.
-    const double gap = (i % 4 < 2)   ? rng.log_uniform(1e-6, 10)
+    const double gap = (i % 4 < 2)    ? rng.log_uniform(1e-6, 10)
                        : (i % 4 == 2) ? -rng.log_uniform(1e-6, 0.1)
                                       : -rng.uniform(0.1, 1.0);
     const auto pair = testing::random_pair(rng, kind, na, nb, gap);
@@ -96,9 +96,9 @@ TEST_CASE("gjk-johnson distances scale by exactly 2^k", "[property]") {
   Rng rng(7);
   int compared = 0;
   for (int i = 0; i < 200; ++i) {
-    const auto pair = testing::random_pair(rng, i % 2 ? CloudKind::cube : CloudKind::sphere,
-                                           rng.integer(4, 64), rng.integer(4, 64),
-                                           rng.log_uniform(1e-6, 10));
+    const auto pair =
+        testing::random_pair(rng, i % 2 ? CloudKind::cube : CloudKind::sphere, rng.integer(4, 64),
+                             rng.integer(4, 64), rng.log_uniform(1e-6, 10));
     const Polytope a(pair.a), b(pair.b);
     const auto base = gjk_distance(a, b);
     for (int k : {-40, -7, 3, 40}) {

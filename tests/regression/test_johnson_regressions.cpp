@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/geometry/polytope.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 
 using namespace gjklab;
@@ -12,7 +12,8 @@ using namespace gjklab;
 namespace {
 
 experiment::PointCase load_case(const char* file) {
-  const auto cases = experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
+  const auto cases =
+      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
   REQUIRE(cases.size() == 1);
   return std::get<experiment::PointCase>(cases[0]);
 }

@@ -22,7 +22,6 @@ experiment::PointCase load_case(const std::string& file) {
   return std::get<experiment::PointCase>(cases[0]);
 }
 
-
 /// Every algorithm on the case: finite answers; gjklab's own agree with the exact answer.
 exact::OracleAnswer check_every_algorithm(const experiment::PointCase& c) {
   const Polytope a(c.a), b(c.b);
@@ -58,8 +57,7 @@ TEST_CASE("cubes of side 2 centred 1.9 apart along z: depth 0.1, no NaN", "[regr
   CHECK(*exact.depth == Approx(0.1).epsilon(1e-12));
 }
 
-TEST_CASE("flat polygons at z = 0 intersect (a library reported distance 0.509)",
-          "[regression]") {
+TEST_CASE("flat polygons at z = 0 intersect (a library reported distance 0.509)", "[regression]") {
   const auto exact = check_every_algorithm(load_case("flat_polygons_z0_intersecting.jsonl"));
   CHECK(exact.intersect);
   CHECK(exact.hull_vertices_a == 4);
@@ -73,8 +71,7 @@ TEST_CASE("thin plate vs rotated small box: no NaN witness from a collinear simp
   CHECK(exact.distance == Approx(0.0535161628).epsilon(1e-9));
 }
 
-TEST_CASE("point vs degenerate triangle with a repeated vertex: distance 0.17148",
-          "[regression]") {
+TEST_CASE("point vs degenerate triangle with a repeated vertex: distance 0.17148", "[regression]") {
   const auto exact = check_every_algorithm(load_case("point_vs_degenerate_triangle.jsonl"));
   CHECK_FALSE(exact.intersect);
   CHECK(exact.distance == Approx(0.17148).epsilon(1e-4));

@@ -63,11 +63,14 @@ inline RandomPair random_pair(Rng& rng, CloudKind kind, int na, int nb, double g
   RandomPair p{random_cloud(rng, kind, na), random_cloud(rng, kind, nb), gap};
   const Vec3 u = rng.unit_vector();
   double a_max = -INFINITY, b_min = INFINITY;
-  for (const Vec3& v : p.a) a_max = std::max(a_max, v.dot(u));
-  for (const Vec3& v : p.b) b_min = std::min(b_min, v.dot(u));
+  for (const Vec3& v : p.a)
+    a_max = std::max(a_max, v.dot(u));
+  for (const Vec3& v : p.b)
+    b_min = std::min(b_min, v.dot(u));
   const double size = pair_size(p.a, p.b);
   const Vec3 shift = (a_max - b_min + gap * size) * u;
-  for (Vec3& v : p.b) v += shift;
+  for (Vec3& v : p.b)
+    v += shift;
   return p;
 }
 

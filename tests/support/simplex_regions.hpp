@@ -17,8 +17,8 @@
 namespace gjklab::testing {
 
 /// The corner tetrahedron 0, e1, e2, e3: every region's normal cone is easy to enumerate.
-inline const std::array<Vec3, 4> kCornerTetrahedron = {Vec3(0, 0, 0), Vec3(1, 0, 0),
-                                                       Vec3(0, 1, 0), Vec3(0, 0, 1)};
+inline const std::array<Vec3, 4> kCornerTetrahedron = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0),
+                                                       Vec3(0, 0, 1)};
 
 inline Vec3 feature_centroid(const std::array<Vec3, 4>& y, int count, unsigned feature) {
   Vec3 p = Vec3::Zero();
@@ -66,7 +66,8 @@ void for_each_region_case(F&& f) {
     std::array<int, 4> order{0, 1, 2, 3};
     do {
       std::array<Vec3, 4> y;
-      for (int i = 0; i < count; ++i) y[i] = kCornerTetrahedron[order[i]];
+      for (int i = 0; i < count; ++i)
+        y[i] = kCornerTetrahedron[order[i]];
       for (unsigned feature = 1; feature < (1u << count); ++feature) {
         const Vec3 p = feature_centroid(y, count, feature);
         for (const Vec3& n : normal_cone_samples(y, count, feature)) {
@@ -74,7 +75,8 @@ void for_each_region_case(F&& f) {
           c.count = count;
           c.feature = feature;
           c.closest = -n;
-          for (int i = 0; i < count; ++i) c.y[i] = y[i] - (p + n);
+          for (int i = 0; i < count; ++i)
+            c.y[i] = y[i] - (p + n);
           f(c);
         }
       }

@@ -35,18 +35,18 @@ std::vector<AnalyticCase> analytic_cases() {
                    unit.transformed(rotation_about(Vec3::UnitZ(), pi / 4, Vec3(2, 0, 0))), false,
                    2 - std::sqrt(2.0)});
   // A's vertex (½,½,½) turned onto +x sits at x = √3/2; B's face at x = 1.5 − ½.
-  cases.push_back({"boxes vertex-face",
-                   unit.transformed({Quat::FromTwoVectors(Vec3(1, 1, 1), Vec3::UnitX())
-                                         .toRotationMatrix(),
-                                     Vec3::Zero()}),
-                   unit.transformed(Pose::from_translation(Vec3(1.5, 0, 0))), false,
-                   1 - std::sqrt(3.0) / 2});
+  cases.push_back(
+      {"boxes vertex-face",
+       unit.transformed(
+           {Quat::FromTwoVectors(Vec3(1, 1, 1), Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()}),
+       unit.transformed(Pose::from_translation(Vec3(1.5, 0, 0))), false, 1 - std::sqrt(3.0) / 2});
   cases.push_back({"boxes far apart", unit,
                    unit.transformed(Pose::from_translation(Vec3(-3, 4, 12))), false,
                    std::sqrt(2.0 * 2 + 3 * 3 + 11 * 11)});
-  cases.push_back({"small box nested in a large box", shapes::box(Vec3(4, 4, 4)),
-                   shapes::box(Vec3(0.5, 0.25, 1)).transformed(Pose::from_translation(Vec3(0.5, -0.25, 1))),
-                   true, 0});
+  cases.push_back(
+      {"small box nested in a large box", shapes::box(Vec3(4, 4, 4)),
+       shapes::box(Vec3(0.5, 0.25, 1)).transformed(Pose::from_translation(Vec3(0.5, -0.25, 1))),
+       true, 0});
   cases.push_back({"boxes overlapping by 0.5", unit,
                    unit.transformed(Pose::from_translation(Vec3(0.5, 0.25, 0))), true, 0});
   cases.push_back({"sphere and cone overlapping at their centres", shapes::uv_sphere(),

@@ -4,11 +4,11 @@
 
 #include <set>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <unistd.h>
 
 #include "gjklab/cli.hpp"
 
@@ -23,7 +23,8 @@ struct Run {
 
 Run run_cli(const std::vector<std::string>& args) {
   std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args) argv.push_back(a.c_str());
+  for (const auto& a : args)
+    argv.push_back(a.c_str());
   std::istringstream in;
   std::ostringstream out, err;
   const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
@@ -51,8 +52,8 @@ nlohmann::json read_json(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-const std::vector<std::string> kTiny = {"--samples", "2", "--configurations", "1", "--batch-us",
-                                        "0", "--quiet"};
+const std::vector<std::string> kTiny = {"--samples",  "2", "--configurations", "1",
+                                        "--batch-us", "0", "--quiet"};
 
 std::vector<std::string> with_tiny(std::vector<std::string> args) {
   args.insert(args.end(), kTiny.begin(), kTiny.end());
@@ -61,11 +62,11 @@ std::vector<std::string> with_tiny(std::vector<std::string> args) {
 
 }  // namespace
 
-TEST_CASE("bench seed suite: JSON records with the documented fields and ratios",
-          "[unit][bench]") {
+TEST_CASE("bench seed suite: JSON records with the documented fields and ratios", "[unit][bench]") {
   TempDir dir;
   const std::string json = dir.file("bench.json");
-  const Run r = run_cli(with_tiny({"bench", "--suite", "seed", "--cases", "box-cone", "--json", json}));
+  const Run r =
+      run_cli(with_tiny({"bench", "--suite", "seed", "--cases", "box-cone", "--json", json}));
   REQUIRE(r.status == 0);
   CHECK(r.out.find("box-cone overlap") != std::string::npos);
   CHECK(r.out.find("x ref") != std::string::npos);
@@ -102,13 +103,12 @@ TEST_CASE("bench seed suite: JSON records with the documented fields and ratios"
   CHECK(references >= 2);
 }
 
-TEST_CASE("bench: hill-climbing rows, an explicit reference and the scene suite",
-          "[unit][bench]") {
+TEST_CASE("bench: hill-climbing rows, an explicit reference and the scene suite", "[unit][bench]") {
   TempDir dir;
   const std::string json = dir.file("hc.json");
-  Run r = run_cli(with_tiny({"bench", "--suite", "random", "--cases", "n=32 separated",
-                             "--algorithms", "gjk-johnson,gjk-johnson+hc", "--reference",
-                             "gjk-johnson", "--json", json}));
+  Run r = run_cli(
+      with_tiny({"bench", "--suite", "random", "--cases", "n=32 separated", "--algorithms",
+                 "gjk-johnson,gjk-johnson+hc", "--reference", "gjk-johnson", "--json", json}));
   REQUIRE(r.status == 0);
   nlohmann::json doc = read_json(json);
   REQUIRE(doc["records"].size() == 2);

@@ -2,11 +2,11 @@
 // slivers, scale disparity, offsets and cases read from a file — checked with the exact oracle.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <unistd.h>
 
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
@@ -85,8 +85,7 @@ TEST_CASE("parallel-edges contact: ridges at a small angle cross at the origin",
   }
 }
 
-TEST_CASE("flat and collinear clouds stay exactly flat under axis rotations",
-          "[unit][families]") {
+TEST_CASE("flat and collinear clouds stay exactly flat under axis rotations", "[unit][families]") {
   const auto config = parse(
       "[[family]]\nshape = \"flat_points\"\nvertices = 20\nrotate = \"axes\"\n"
       "[[family]]\nshape = \"collinear_points\"\nvertices = 9\nrotate = \"axes\"\n"
@@ -104,15 +103,20 @@ TEST_CASE("flat and collinear clouds stay exactly flat under axis rotations",
         bool flat = false;
         for (int k = 0; k < 3; ++k) {
           bool same = true;
-          for (const Vec3& p : c.a) same = same && p[k] == c.a[0][k];
+          for (const Vec3& p : c.a)
+            same = same && p[k] == c.a[0][k];
           flat = flat || same;
         }
         CHECK(flat);
         CHECK(hull >= 3);
         break;
       }
-      case 1: CHECK(hull == 2); break;
-      case 2: CHECK(hull <= 3); break;
+      case 1:
+        CHECK(hull == 2);
+        break;
+      case 2:
+        CHECK(hull <= 3);
+        break;
       case 3:
         CHECK(c.a.size() == 1);
         CHECK(hull == 1);
@@ -134,7 +138,8 @@ TEST_CASE("slivers, scale disparity and offsets", "[unit][families]") {
     if (c.record.family == 0) {
       // Extent along z is 1/aspect.
       double lo = INFINITY, hi = -INFINITY;
-      for (const Vec3& p : c.a) lo = std::min(lo, p.z()), hi = std::max(hi, p.z());
+      for (const Vec3& p : c.a)
+        lo = std::min(lo, p.z()), hi = std::max(hi, p.z());
       CHECK(hi - lo <= 1e-5);
       CHECK(hi - lo >= 1e-6 * (1 - 1e-12));
     } else if (c.record.family == 1) {
@@ -146,8 +151,8 @@ TEST_CASE("slivers, scale disparity and offsets", "[unit][families]") {
 }
 
 TEST_CASE("file family: pairs read from a cases file, in order, exactly", "[unit][families]") {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("gjklab-file-family-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("gjklab-file-family-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   {
     std::ofstream f(dir / "pairs.jsonl");

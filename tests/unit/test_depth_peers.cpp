@@ -28,7 +28,9 @@ using testing::Rng;
 
 namespace {
 
-Polytope moved(const Polytope& p, const Vec3& t) { return p.transformed(Pose::from_translation(t)); }
+Polytope moved(const Polytope& p, const Vec3& t) {
+  return p.transformed(Pose::from_translation(t));
+}
 
 const Polytope& cube() {
   static const Polytope c = shapes::box(Vec3(2, 2, 2));
@@ -57,7 +59,7 @@ TEST_CASE("libccd penetration: boxes", "[unit][libccd]") {
     CHECK((r.termination == Termination::numerical_failure ||
            (r.termination == Termination::converged && std::abs(r.depth - 0.1) <= 1e-3)));
     WARN("libccd-gjk-epa on the cubes: termination " << to_string(r.termination) << ", depth "
-                                                      << r.depth);
+                                                     << r.depth);
   }
   SECTION("GJK+EPA on turned boxes") {
     const Polytope turned = shapes::box().transformed(
@@ -70,7 +72,8 @@ TEST_CASE("libccd penetration: boxes", "[unit][libccd]") {
     CHECK(std::abs(r.depth - *exact.depth) <= 1e-3);
   }
   const Polytope apart = moved(cube(), Vec3(2.5, 0.1, 0.2));
-  for (const auto& r : {libccd_gjk_penetration(cube(), apart), libccd_mpr_penetration(cube(), apart)}) {
+  for (const auto& r :
+       {libccd_gjk_penetration(cube(), apart), libccd_mpr_penetration(cube(), apart)}) {
     CHECK_FALSE(r.intersect);
     CHECK(r.termination == Termination::converged);
     CHECK(r.depth == 0);
@@ -79,7 +82,8 @@ TEST_CASE("libccd penetration: boxes", "[unit][libccd]") {
 
 TEST_CASE("libccd penetration: the adapter's budget ends EPA and MPR", "[unit][libccd]") {
   const Polytope a = shapes::uv_sphere();
-  const Polytope b = a.transformed(Pose::from_quaternion(Quat(0.3, 0.1, 0.5, 0.2), Vec3(0.1, 0.2, 0.05)));
+  const Polytope b =
+      a.transformed(Pose::from_quaternion(Quat(0.3, 0.1, 0.5, 0.2), Vec3(0.1, 0.2, 0.05)));
   SECTION("GJK+EPA with epa_tolerance 0 does not stop by itself") {
     // With a zero tolerance libccd's EPA keeps adding support points it already has; only the
     // adapter's budget ends it, and libccd still returns its nearest face.
@@ -142,12 +146,14 @@ TEST_CASE("fcl: separated and overlapping boxes", "[unit][peers][fcl]") {
   const FclShape a(cube());
   for (const FclSolver solver : {FclSolver::libccd, FclSolver::indep}) {
     INFO((solver == FclSolver::libccd ? "fcl-libccd" : "fcl-indep"));
-    const PenetrationResult apart = fcl_query(a, FclShape(moved(cube(), Vec3(2.5, 0.1, 0.2))), solver);
+    const PenetrationResult apart =
+        fcl_query(a, FclShape(moved(cube(), Vec3(2.5, 0.1, 0.2))), solver);
     CHECK_FALSE(apart.intersect);
     CHECK(apart.termination == Termination::converged);
     CHECK(std::abs(apart.distance - 0.5) <= 1e-6);
     CHECK(apart.normal.x() > 0.99);
-    const PenetrationResult overlap = fcl_query(a, FclShape(moved(cube(), Vec3(0, 0, 1.9))), solver);
+    const PenetrationResult overlap =
+        fcl_query(a, FclShape(moved(cube(), Vec3(0, 0, 1.9))), solver);
     CHECK(overlap.intersect);
     CHECK(overlap.termination == Termination::converged);
     CHECK(std::abs(overlap.depth - 0.1) <= 1e-6);
@@ -228,7 +234,7 @@ TEST_CASE("depth peers against the exact oracle on seeded random pairs (reported
   for (const auto& [name, t] : tally) {
     CHECK(t.queries == kPairs);
     WARN(name << ": wrong booleans outside the band " << t.wrong_boolean << "/" << kPairs
-              << ", depth error > 1e-6·size " << t.depth_off << "/" << intersecting
-              << " (worst " << t.worst_depth_error << "), not converged " << t.not_converged);
+              << ", depth error > 1e-6·size " << t.depth_off << "/" << intersecting << " (worst "
+              << t.worst_depth_error << "), not converged " << t.not_converged);
   }
 }

@@ -2,11 +2,11 @@
 // temporary-file-then-rename rule as seen from a run.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/archive.hpp"
@@ -64,7 +64,9 @@ struct TempDir {
   }
 };
 
-bool same_double(double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; }
+bool same_double(double x, double y) {
+  return (std::isnan(x) && std::isnan(y)) || x == y;
+}
 
 void require_same_results(const std::vector<CaseResult>& x, const std::vector<CaseResult>& y) {
   REQUIRE(x.size() == y.size());
@@ -109,7 +111,8 @@ TEST_CASE("driver: the archive is identical with 1 and 2 threads", "[unit][drive
   require_same_results(a1.results, a2.results);
   // The sample exercises both exact answers.
   int intersecting = 0;
-  for (const auto& r : a1.results) intersecting += r.exact->intersect;
+  for (const auto& r : a1.results)
+    intersecting += r.exact->intersect;
   CHECK(intersecting > 0);
   CHECK(intersecting < 40);
 }
@@ -133,7 +136,8 @@ TEST_CASE("gjklab run: smoke run, existing output, inspect", "[smoke][driver]") 
   const fs::path out = dir.path / "tiny.h5";
   auto run = [&](std::vector<std::string> args, std::string* output = nullptr) {
     std::vector<const char*> argv{"gjklab"};
-    for (const auto& a : args) argv.push_back(a.c_str());
+    for (const auto& a : args)
+      argv.push_back(a.c_str());
     std::istringstream in;
     std::ostringstream o, e;
     const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, o, e);

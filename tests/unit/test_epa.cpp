@@ -17,9 +17,13 @@ using testing::Rng;
 
 namespace {
 
-Polytope moved(const Polytope& p, const Vec3& t) { return p.transformed(Pose::from_translation(t)); }
+Polytope moved(const Polytope& p, const Vec3& t) {
+  return p.transformed(Pose::from_translation(t));
+}
 
-bool unit_and_finite(const Vec3& n) { return n.allFinite() && std::abs(n.norm() - 1) < 1e-12; }
+bool unit_and_finite(const Vec3& n) {
+  return n.allFinite() && std::abs(n.norm() - 1) < 1e-12;
+}
 
 /// A simplex vertex for a point a of A and b of B.
 SimplexVertex vertex(const Vec3& a, const Vec3& b) {
@@ -34,7 +38,8 @@ SimplexVertex vertex(const Vec3& a, const Vec3& b) {
 DistanceResult contact_with(std::initializer_list<SimplexVertex> points) {
   DistanceResult r;
   r.intersect = true;
-  for (const SimplexVertex& v : points) r.simplex.push(v);
+  for (const SimplexVertex& v : points)
+    r.simplex.push(v);
   r.witness_a = r.simplex[0].a;
   r.witness_b = r.simplex[0].b;
   return r;
@@ -97,7 +102,9 @@ TEST_CASE("epa: known depths of boxes and a point", "[unit][epa]") {
 TEST_CASE("epa: touching pairs have depth 0", "[unit][epa]") {
   const Polytope box = shapes::box();
   const std::vector<std::pair<const char*, Vec3>> offsets = {
-      {"face", Vec3(1, 0.25, 0.5)}, {"edge", Vec3(1, 1, 0.5)}, {"vertex", Vec3(1, 1, 1)},
+      {"face", Vec3(1, 0.25, 0.5)},
+      {"edge", Vec3(1, 1, 0.5)},
+      {"vertex", Vec3(1, 1, 1)},
       {"face, other side", Vec3(-0.3, 0.2, -1)}};
   for (const auto& [name, t] : offsets) {
     INFO(name);
@@ -109,10 +116,11 @@ TEST_CASE("epa: touching pairs have depth 0", "[unit][epa]") {
   }
   // A tetrahedron touching a box at a vertex, rotated so nothing is axis-aligned.
   const Polytope tetra({Vec3(0, 0, 0), Vec3(1, 0.2, 0.1), Vec3(0.3, 1, 0.2), Vec3(0.2, 0.3, 1)});
-  const Polytope turned = box.transformed(
-      Pose::from_quaternion(Quat(0.9, 0.1, 0.3, 0.2), Vec3::Zero()));
+  const Polytope turned =
+      box.transformed(Pose::from_quaternion(Quat(0.9, 0.1, 0.3, 0.2), Vec3::Zero()));
   const Vec3 corner = turned.support(Vec3(-1, -1, -1));
-  const Polytope placed = tetra.transformed(Pose::from_translation(corner - tetra.support(Vec3(1, 1, 1))));
+  const Polytope placed =
+      tetra.transformed(Pose::from_translation(corner - tetra.support(Vec3(1, 1, 1))));
   const auto exact = exact::solve(turned.vertices(), placed.vertices(), {.depth = true});
   const EpaResult r = gjk_epa(turned, placed);
   CHECK(r.intersect == exact.intersect);
@@ -171,7 +179,8 @@ TEST_CASE("epa: blows up GJK simplices of one to four points, flat ones included
        contact_with({vertex(p + u, p), vertex(p + v, p), vertex(p, p + u + v)})},
       {"flat tetrahedron around the origin",
        contact_with({vertex(p + u, p), vertex(p + v, p), vertex(p, p + u), vertex(p, p + v)})},
-      {"collinear triangle", contact_with({vertex(p + u, p), vertex(p, p + u), vertex(p + 2 * u, p)})},
+      {"collinear triangle",
+       contact_with({vertex(p + u, p), vertex(p, p + u), vertex(p + 2 * u, p)})},
       {"segment of two equal points", contact_with({vertex(p + s, p + s), vertex(p, p)})},
   };
   for (const Start& start : starts) {
@@ -254,7 +263,8 @@ TEST_CASE("epa: separated pairs pass GJK's answer through", "[unit][epa]") {
 
 TEST_CASE("epa: iteration and face bounds stop with step_limit and a valid bound", "[unit][epa]") {
   const Polytope a = shapes::uv_sphere();
-  const Polytope b = a.transformed(Pose::from_quaternion(Quat(0.3, 0.1, 0.5, 0.2), Vec3(0.1, 0.2, 0.05)));
+  const Polytope b =
+      a.transformed(Pose::from_quaternion(Quat(0.3, 0.1, 0.5, 0.2), Vec3(0.1, 0.2, 0.05)));
   const double expected = exact_depth(a, b);
   const EpaResult full = gjk_epa(a, b);
   REQUIRE(full.termination == Termination::converged);
@@ -268,7 +278,7 @@ TEST_CASE("epa: iteration and face bounds stop with step_limit and a valid bound
     CHECK(r.stop == EpaStop::step_limit);
     CHECK(r.termination == Termination::step_limit);
     CHECK(r.iterations == 5);
-    CHECK(r.depth <= expected * (1 + 1e-15));           // a lower bound
+    CHECK(r.depth <= expected * (1 + 1e-15));              // a lower bound
     CHECK(r.depth_upper_bound >= expected * (1 - 1e-15));  // and an upper bound
     CHECK(unit_and_finite(r.normal));
   }

@@ -15,7 +15,9 @@ using Catch::Contains;
 
 namespace {
 
-ExperimentConfig parse(const std::string& text) { return parse_experiment(text, "exp.toml"); }
+ExperimentConfig parse(const std::string& text) {
+  return parse_experiment(text, "exp.toml");
+}
 
 // A minimal valid file; tests append or replace lines to make one mistake at a time.
 const std::string kHead = R"(name = "t"
@@ -31,7 +33,8 @@ const std::string kAlgorithm = R"(
 name = "gjk-johnson"
 )";
 
-std::map<std::string, std::string> as_map(const std::vector<std::pair<std::string, std::string>>& v) {
+std::map<std::string, std::string> as_map(
+    const std::vector<std::pair<std::string, std::string>>& v) {
   return {v.begin(), v.end()};
 }
 
@@ -194,8 +197,7 @@ TEST_CASE("omitted keys take their documented defaults", "[unit][config]") {
   CHECK(f.placement.spread == defaults.spread);
   REQUIRE(c.algorithms.size() == 1);
   CHECK(c.algorithms[0].options.gjk_distance.relative_gap == GjkDistanceDefaults::relative_gap);
-  CHECK(c.algorithms[0].options.gjk_distance.max_iterations ==
-        GjkDistanceDefaults::max_iterations);
+  CHECK(c.algorithms[0].options.gjk_distance.max_iterations == GjkDistanceDefaults::max_iterations);
 
   // The demo shapes default to their own vertex counts.
   const ExperimentConfig d = parse(kHead + R"(
@@ -225,16 +227,17 @@ TEST_CASE("unknown keys are reported with file, line and dotted key path", "[uni
                     Contains("exp.toml:7:") && Contains("key 'family[0].vertex'") &&
                         Contains("unknown key") && Contains("vertices"));
   // In a family's placement sub-table.
-  CHECK_THROWS_WITH(parse(kHead + kFamily + kFamily + "[family.placement]\nwidth = 1\n" +
-                          kAlgorithm),
-                    Contains("exp.toml:11:") && Contains("key 'family[1].placement.width'"));
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + kFamily + "[family.placement]\nwidth = 1\n" + kAlgorithm),
+      Contains("exp.toml:11:") && Contains("key 'family[1].placement.width'"));
   CHECK_THROWS_WITH(parse(kHead + "[oracle]\nenable = true\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:5:") && Contains("key 'oracle.enable'") &&
                         Contains("valid: enabled, depth"));
   // A key of another algorithm names the algorithms it belongs to.
   CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + "mpr_tolerance = 1e-5\n"),
                     Contains("exp.toml:10:") && Contains("key 'algorithm[0].mpr_tolerance'") &&
-                        Contains("applies to libccd-gjk, libccd-mpr") && Contains("not to gjk-johnson"));
+                        Contains("applies to libccd-gjk, libccd-mpr") &&
+                        Contains("not to gjk-johnson"));
   CHECK_THROWS_WITH(
       parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-bool\"\nrelative_gap = 1e-9\n"),
       Contains("exp.toml:10:") && Contains("key 'algorithm[0].relative_gap'") &&
@@ -251,9 +254,9 @@ TEST_CASE("values of the wrong type are reported", "[unit][config]") {
   CHECK_THROWS_WITH(parse(kHead + kFamily + "vertices = [4, 8.5]\n" + kAlgorithm),
                     Contains("exp.toml:7:") && Contains("key 'family[0].vertices'") &&
                         Contains("expected an integer, got a float"));
-  CHECK_THROWS_WITH(parse(kHead + "placement = 3\n" + kFamily + kAlgorithm),
-                    Contains("exp.toml:4:") && Contains("key 'placement'") &&
-                        Contains("expected a table"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "placement = 3\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:4:") && Contains("key 'placement'") && Contains("expected a table"));
   CHECK_THROWS_WITH(parse(kHead + "[family]\nshape = \"box\"\n" + kAlgorithm),
                     Contains("exp.toml:4:") && Contains("key 'family'") &&
                         Contains("expected an array of tables ([[family]])"));
@@ -263,17 +266,17 @@ TEST_CASE("values of the wrong type are reported", "[unit][config]") {
 }
 
 TEST_CASE("out-of-range values are reported", "[unit][config]") {
-  CHECK_THROWS_WITH(parse("name = \"t\"\nseed = 1\ncases = 0\n" + kFamily + kAlgorithm),
-                    Contains("exp.toml:3:") && Contains("key 'cases'") &&
-                        Contains("must be between 1 and"));
-  CHECK_THROWS_WITH(parse("name = \"t\"\nseed = -4\ncases = 3\n" + kFamily + kAlgorithm),
-                    Contains("exp.toml:2:") && Contains("key 'seed'") &&
-                        Contains("must be at least 0"));
+  CHECK_THROWS_WITH(
+      parse("name = \"t\"\nseed = 1\ncases = 0\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:3:") && Contains("key 'cases'") && Contains("must be between 1 and"));
+  CHECK_THROWS_WITH(
+      parse("name = \"t\"\nseed = -4\ncases = 3\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:2:") && Contains("key 'seed'") && Contains("must be at least 0"));
   CHECK_THROWS_WITH(parse(kHead + "threads = 0\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:4:") && Contains("key 'threads'"));
-  CHECK_THROWS_WITH(parse(kHead + "touching_band = 0.0\n" + kFamily + kAlgorithm),
-                    Contains("exp.toml:4:") && Contains("key 'touching_band'") &&
-                        Contains("must be > 0"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "touching_band = 0.0\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:4:") && Contains("key 'touching_band'") && Contains("must be > 0"));
   CHECK_THROWS_WITH(parse(kHead + "touching_band = nan\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:4:") && Contains("must be finite"));
   CHECK_THROWS_WITH(parse(kHead + "[timing]\nrepetitions = 0\n" + kFamily + kAlgorithm),
@@ -281,13 +284,13 @@ TEST_CASE("out-of-range values are reported", "[unit][config]") {
   CHECK_THROWS_WITH(parse(kHead + "[placement]\ngap = [0.5, 0.1]\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:5:") && Contains("key 'placement.gap'") &&
                         Contains("exceeds upper bound"));
-  CHECK_THROWS_WITH(parse(kHead + "[placement]\noverlapping_fraction = 1.5\n" + kFamily +
-                          kAlgorithm),
-                    Contains("exp.toml:5:") && Contains("key 'placement.overlapping_fraction'") &&
-                        Contains("between 0 and 1"));
-  CHECK_THROWS_WITH(parse(kHead + kFamily + "weight = -1\n" + kAlgorithm),
-                    Contains("exp.toml:7:") && Contains("key 'family[0].weight'") &&
-                        Contains("must be > 0"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "[placement]\noverlapping_fraction = 1.5\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:5:") && Contains("key 'placement.overlapping_fraction'") &&
+          Contains("between 0 and 1"));
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + "weight = -1\n" + kAlgorithm),
+      Contains("exp.toml:7:") && Contains("key 'family[0].weight'") && Contains("must be > 0"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + "vertices = 0\n" + kAlgorithm),
                     Contains("exp.toml:7:") && Contains("key 'family[0].vertices'"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + "\n[family.placement]\ngap = [0, 1]\n" + kAlgorithm),
@@ -298,9 +301,9 @@ TEST_CASE("out-of-range values are reported", "[unit][config]") {
   CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + "relative_gap = -1e-3\n"),
                     Contains("exp.toml:10:") && Contains("key 'algorithm[0].relative_gap'") &&
                         Contains("must be >= 0"));
-  CHECK_THROWS_WITH(parse(kHead + kFamily +
-                          "\n[[algorithm]]\nname = \"libccd-gjk\"\nmpr_tolerance = 0\n"),
-                    Contains("exp.toml:10:") && Contains("key 'algorithm[0].mpr_tolerance'"));
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + "\n[[algorithm]]\nname = \"libccd-gjk\"\nmpr_tolerance = 0\n"),
+      Contains("exp.toml:10:") && Contains("key 'algorithm[0].mpr_tolerance'"));
 }
 
 TEST_CASE("unknown names list the valid choices", "[unit][config]") {
@@ -308,10 +311,10 @@ TEST_CASE("unknown names list the valid choices", "[unit][config]") {
                     Contains("exp.toml:6:") && Contains("key 'family[0].shape'") &&
                         Contains("unknown shape 'torus'; valid: sphere_points, ball_points, "
                                  "cube_points, gaussian, box, cone, cylinder, uv_sphere"));
-  CHECK_THROWS_WITH(parse(kHead + "\n[[family]]\nshape_a = \"box\"\nshape_b = \"blob\"\n" +
-                          kAlgorithm),
-                    Contains("exp.toml:7:") && Contains("key 'family[0].shape_b'") &&
-                        Contains("unknown shape 'blob'"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "\n[[family]]\nshape_a = \"box\"\nshape_b = \"blob\"\n" + kAlgorithm),
+      Contains("exp.toml:7:") && Contains("key 'family[0].shape_b'") &&
+          Contains("unknown shape 'blob'"));
   CHECK_THROWS_WITH(parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-foo\"\n"),
                     Contains("exp.toml:9:") && Contains("key 'algorithm[0].name'") &&
                         Contains("unknown algorithm 'gjk-foo'; valid: gjk-bool, gjk-johnson, "
@@ -320,16 +323,16 @@ TEST_CASE("unknown names list the valid choices", "[unit][config]") {
                     Contains("exp.toml:5:") && Contains("key 'placement.mode'") &&
                         Contains("valid: separated, overlapping, mixed, random, touching"));
   // Exact contact needs a contact family.
-  CHECK_THROWS_WITH(parse(kHead + "[placement]\nmode = \"touching\"\n" + kFamily + kAlgorithm),
-                    Contains("key 'family[0].placement.mode'") &&
-                        Contains("needs an exact contact family"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "[placement]\nmode = \"touching\"\n" + kFamily + kAlgorithm),
+      Contains("key 'family[0].placement.mode'") && Contains("needs an exact contact family"));
 }
 
 TEST_CASE("'exact' as an algorithm is refused with an explanation", "[unit][config]") {
-  CHECK_THROWS_WITH(
-      parse(kHead + kFamily + kAlgorithm + "\n[[algorithm]]\nname = \"exact\"\n"),
-      Contains("exp.toml:12:") && Contains("key 'algorithm[1].name'") && Contains("[oracle]") &&
-          Contains("valid: gjk-bool, gjk-johnson, libccd-gjk, libccd-mpr"));
+  CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + "\n[[algorithm]]\nname = \"exact\"\n"),
+                    Contains("exp.toml:12:") && Contains("key 'algorithm[1].name'") &&
+                        Contains("[oracle]") &&
+                        Contains("valid: gjk-bool, gjk-johnson, libccd-gjk, libccd-mpr"));
 }
 
 TEST_CASE("missing required keys are reported at their table", "[unit][config]") {
@@ -339,19 +342,19 @@ TEST_CASE("missing required keys are reported at their table", "[unit][config]")
                     Contains("exp.toml:1:") && Contains("key 'seed'") && Contains("missing"));
   CHECK_THROWS_WITH(parse("name = \"t\"\nseed = 1\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:1:") && Contains("key 'cases'") && Contains("missing"));
-  CHECK_THROWS_WITH(parse(kHead + kAlgorithm),
-                    Contains("exp.toml:1:") && Contains("key 'family'") &&
-                        Contains("at least one [[family]]"));
-  CHECK_THROWS_WITH(parse(kHead + kFamily),
-                    Contains("exp.toml:1:") && Contains("key 'algorithm'") &&
-                        Contains("at least one [[algorithm]]"));
+  CHECK_THROWS_WITH(parse(kHead + kAlgorithm), Contains("exp.toml:1:") &&
+                                                   Contains("key 'family'") &&
+                                                   Contains("at least one [[family]]"));
+  CHECK_THROWS_WITH(parse(kHead + kFamily), Contains("exp.toml:1:") &&
+                                                Contains("key 'algorithm'") &&
+                                                Contains("at least one [[algorithm]]"));
   // Inside an array-of-tables element: the line of its [[header]].
   CHECK_THROWS_WITH(parse(kHead + kFamily + "\n[[algorithm]]\nmax_iterations = 5\n"),
                     Contains("exp.toml:8:") && Contains("key 'algorithm[0].name'") &&
                         Contains("missing") && Contains("valid: gjk-bool"));
-  CHECK_THROWS_WITH(parse(kHead + "\n[[family]]\nvertices = 5\n" + kAlgorithm),
-                    Contains("exp.toml:5:") && Contains("key 'family[0].shape'") &&
-                        Contains("missing"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "\n[[family]]\nvertices = 5\n" + kAlgorithm),
+      Contains("exp.toml:5:") && Contains("key 'family[0].shape'") && Contains("missing"));
   CHECK_THROWS_WITH(parse(kHead + "\n[[family]]\nshape_a = \"box\"\n" + kAlgorithm),
                     Contains("exp.toml:5:") && Contains("key 'family[0].shape_b'"));
 }
@@ -375,9 +378,9 @@ TEST_CASE("contradictions and duplicates are reported", "[unit][config]") {
   CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + kAlgorithm),
                     Contains("exp.toml:12:") && Contains("key 'algorithm[1].name'") &&
                         Contains("already used by algorithm[0]"));
-  CHECK_THROWS_WITH(parse(kHead + "[oracle]\nenabled = false\ndepth = true\n" + kFamily +
-                          kAlgorithm),
-                    Contains("exp.toml:6:") && Contains("key 'oracle.depth'"));
+  CHECK_THROWS_WITH(
+      parse(kHead + "[oracle]\nenabled = false\ndepth = true\n" + kFamily + kAlgorithm),
+      Contains("exp.toml:6:") && Contains("key 'oracle.depth'"));
   CHECK_THROWS_WITH(parse("name = \"../x\"\nseed = 1\ncases = 1\n" + kFamily + kAlgorithm),
                     Contains("exp.toml:1:") && Contains("key 'name'"));
   // Two families with the same shape are fine once named.
@@ -406,7 +409,8 @@ TEST_CASE("load_experiment reads files and reports unreadable ones", "[unit][con
   // Every GJK variant, EPA and the libccd peers (the optional FCL/Bullet peers are left out
   // so that the quickstart runs on any build).
   REQUIRE(c.algorithms.size() == 11);
-  for (const auto& a : c.algorithms) CHECK(find_algorithm(a.name) != nullptr);
+  for (const auto& a : c.algorithms)
+    CHECK(find_algorithm(a.name) != nullptr);
   CHECK(c.algorithms[0].name == "gjk-bool");
   CHECK(c.algorithms[1].name == "gjk-johnson");
   CHECK(c.algorithms[2].name == "libccd-gjk");
@@ -430,7 +434,7 @@ mpr_tolerance = 3.3e-7
   REQUIRE(c.algorithms.size() == 3);
   const auto bool_options = as_map(describe_options(c.algorithms[0]));
   CHECK(bool_options == std::map<std::string, std::string>{{"max_iterations", "17"},
-                                                            {"initial_direction", "1 0 0"}});
+                                                           {"initial_direction", "1 0 0"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
   CHECK(johnson.size() == 7);
@@ -496,9 +500,9 @@ relative_gap = 1e-9
       parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-sv\"\nconvergence = \"hybrid\"\n"),
       Contains("exp.toml:10:") && Contains("key 'algorithm[0].convergence'") &&
           Contains("unknown criterion 'hybrid'; valid: relative, absolute, duality_gap"));
-  CHECK_THROWS_WITH(
-      parse(kHead + kFamily +
-            "\n[[algorithm]]\nname = \"gjk-voronoi\"\nnormalize_direction = false\n"),
-      Contains("exp.toml:10:") && Contains("key 'algorithm[0].normalize_direction'") &&
-          Contains("applies to gjk-nesterov, not to gjk-voronoi"));
+  CHECK_THROWS_WITH(parse(kHead + kFamily +
+                          "\n[[algorithm]]\nname = \"gjk-voronoi\"\nnormalize_direction = false\n"),
+                    Contains("exp.toml:10:") &&
+                        Contains("key 'algorithm[0].normalize_direction'") &&
+                        Contains("applies to gjk-nesterov, not to gjk-voronoi"));
 }

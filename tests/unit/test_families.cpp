@@ -87,17 +87,20 @@ bool same_case(const GeneratedCase& x, const GeneratedCase& y) {
 
 double max_dot(const std::vector<Vec3>& cloud, const Vec3& u) {
   double m = -HUGE_VAL;
-  for (const Vec3& p : cloud) m = std::max(m, p.dot(u));
+  for (const Vec3& p : cloud)
+    m = std::max(m, p.dot(u));
   return m;
 }
 double min_dot(const std::vector<Vec3>& cloud, const Vec3& u) {
   double m = HUGE_VAL;
-  for (const Vec3& p : cloud) m = std::min(m, p.dot(u));
+  for (const Vec3& p : cloud)
+    m = std::min(m, p.dot(u));
   return m;
 }
 Vec3 mean_of(const std::vector<Vec3>& cloud) {
   Vec3 s = Vec3::Zero();
-  for (const Vec3& p : cloud) s += p;
+  for (const Vec3& p : cloud)
+    s += p;
   return s / static_cast<double>(cloud.size());
 }
 
@@ -111,11 +114,14 @@ TEST_CASE("a case is a function of (seed, case id) alone", "[unit][families]") {
   CHECK(first.record.case_id == 17);
 
   std::vector<GeneratedCase> forward;
-  for (std::uint64_t i = 0; i < 100; ++i) forward.push_back(generate_case(c, i));
+  for (std::uint64_t i = 0; i < 100; ++i)
+    forward.push_back(generate_case(c, i));
   std::vector<GeneratedCase> backward(100);
-  for (std::uint64_t i = 100; i-- > 0;) backward[i] = generate_case(c, i);
+  for (std::uint64_t i = 100; i-- > 0;)
+    backward[i] = generate_case(c, i);
   int mismatches = 0;
-  for (std::size_t i = 0; i < 100; ++i) mismatches += same_case(forward[i], backward[i]) ? 0 : 1;
+  for (std::size_t i = 0; i < 100; ++i)
+    mismatches += same_case(forward[i], backward[i]) ? 0 : 1;
   CHECK(mismatches == 0);
 
   // Different ids and different seeds give different cases.
@@ -125,13 +131,15 @@ TEST_CASE("a case is a function of (seed, case id) alone", "[unit][families]") {
   CHECK_FALSE(bitwise_equal(generate_case(other, 17).a, first.a));
   // Every family shows up over 100 cases.
   std::set<std::uint32_t> seen;
-  for (const GeneratedCase& g : forward) seen.insert(g.record.family);
+  for (const GeneratedCase& g : forward)
+    seen.insert(g.record.family);
   CHECK(seen.size() == c.families.size());
 }
 
 TEST_CASE("case stream seeds are distinct within an experiment", "[unit][families]") {
   std::set<std::uint32_t> seeds;
-  for (std::uint64_t i = 0; i < 200000; ++i) seeds.insert(case_stream_seed(7, i));
+  for (std::uint64_t i = 0; i < 200000; ++i)
+    seeds.insert(case_stream_seed(7, i));
   CHECK(seeds.size() == 200000);
   CHECK(case_stream_seed(7, 5) == case_stream_seed(7, 5));
   CHECK(case_stream_seed(7, 5) != case_stream_seed(8, 5));
@@ -145,34 +153,40 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     const auto pts = generate_shape(ShapeKind::sphere_points, n, rng.get());
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double worst = 0;
-    for (const Vec3& p : pts) worst = std::max(worst, std::abs(p.norm() - 1));
+    for (const Vec3& p : pts)
+      worst = std::max(worst, std::abs(p.norm() - 1));
     CHECK(worst <= 1e-12);
     CHECK(mean_of(pts).norm() < 0.03);
     // Uniform on the sphere: z is uniform on [-1, 1], so P(z > 0.5) = 1/4.
-    const auto upper = std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.z() > 0.5; });
+    const auto upper =
+        std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.z() > 0.5; });
     CHECK(static_cast<double>(upper) / n == Approx(0.25).margin(0.015));
   }
   SECTION("ball_points fill the unit ball uniformly") {
     const auto pts = generate_shape(ShapeKind::ball_points, n, rng.get());
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double largest = 0;
-    for (const Vec3& p : pts) largest = std::max(largest, p.norm());
+    for (const Vec3& p : pts)
+      largest = std::max(largest, p.norm());
     CHECK(largest <= 1.0);
     CHECK(largest > 0.99);
     // Uniform in volume: P(|p| < 1/2) = 1/8.
-    const auto inner = std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.norm() < 0.5; });
+    const auto inner =
+        std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.norm() < 0.5; });
     CHECK(static_cast<double>(inner) / n == Approx(0.125).margin(0.01));
   }
   SECTION("cube_points fill [-1, 1]^3") {
     const auto pts = generate_shape(ShapeKind::cube_points, n, rng.get());
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double largest = 0;
-    for (const Vec3& p : pts) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+    for (const Vec3& p : pts)
+      largest = std::max(largest, p.cwiseAbs().maxCoeff());
     CHECK(largest <= 1.0);
     CHECK(largest > 0.999);
     CHECK(mean_of(pts).norm() < 0.03);
     // Uniform on each axis: P(x > 0.5) = 1/4.
-    const auto right = std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.x() > 0.5; });
+    const auto right =
+        std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.x() > 0.5; });
     CHECK(static_cast<double>(right) / n == Approx(0.25).margin(0.015));
   }
   SECTION("gaussian clouds are standard normal") {
@@ -181,10 +195,13 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     const Vec3 mean = mean_of(pts);
     CHECK(mean.norm() < 0.04);
     Vec3 var = Vec3::Zero();
-    for (const Vec3& p : pts) var += (p - mean).cwiseProduct(p - mean);
+    for (const Vec3& p : pts)
+      var += (p - mean).cwiseProduct(p - mean);
     var /= n;
-    for (int k = 0; k < 3; ++k) CHECK(var[k] == Approx(1.0).margin(0.05));
-    const auto beyond = std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.norm() > 1; });
+    for (int k = 0; k < 3; ++k)
+      CHECK(var[k] == Approx(1.0).margin(0.05));
+    const auto beyond =
+        std::count_if(pts.begin(), pts.end(), [](const Vec3& p) { return p.norm() > 1; });
     CHECK(beyond > n / 2);  // P(|p| > 1) ≈ 0.80 for a 3-D standard normal
   }
   SECTION("vertex counts below 1 are refused") {
@@ -232,7 +249,8 @@ TEST_CASE("vertex count ranges are drawn log-uniformly", "[unit][families]") {
     below_32 += g.record.vertices_a < 32 ? 1 : 0;
   }
   // P(n < 32) = log(32/4) / log(257/4) ≈ 0.4996 for the log-uniform count.
-  CHECK(static_cast<double>(below_32) / cases == Approx(std::log(8.0) / std::log(257.0 / 4)).margin(0.04));
+  CHECK(static_cast<double>(below_32) / cases ==
+        Approx(std::log(8.0) / std::log(257.0 / 4)).margin(0.04));
 }
 
 TEST_CASE("separated and overlapping placements along the drawn axis", "[unit][families]") {
@@ -329,7 +347,8 @@ TEST_CASE("families are drawn in proportion to their weights", "[unit][families]
     const GeneratedCase g = generate_case(c, static_cast<std::uint64_t>(i));
     REQUIRE(g.record.family < 2);
     ++counts[g.record.family];
-    CHECK(g.record.shape_a == (g.record.family == 0 ? ShapeKind::sphere_points : ShapeKind::cube_points));
+    CHECK(g.record.shape_a ==
+          (g.record.family == 0 ? ShapeKind::sphere_points : ShapeKind::cube_points));
   }
   CHECK(static_cast<double>(counts[0]) / cases == Approx(0.25).margin(0.025));
   CHECK(static_cast<double>(counts[1]) / cases == Approx(0.75).margin(0.025));
@@ -356,8 +375,10 @@ TEST_CASE("scale multiplies the clouds and their size", "[unit][families]") {
       REQUIRE(b.a.size() == u.a.size());
       REQUIRE(b.b.size() == u.b.size());
       bool exact = true;
-      for (std::size_t k = 0; k < u.a.size(); ++k) exact = exact && b.a[k] == 8 * u.a[k];
-      for (std::size_t k = 0; k < u.b.size(); ++k) exact = exact && b.b[k] == 8 * u.b[k];
+      for (std::size_t k = 0; k < u.a.size(); ++k)
+        exact = exact && b.a[k] == 8 * u.a[k];
+      for (std::size_t k = 0; k < u.b.size(); ++k)
+        exact = exact && b.b[k] == 8 * u.b[k];
       CHECK(exact);
     }
   }

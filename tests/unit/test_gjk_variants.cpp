@@ -21,8 +21,7 @@ namespace {
 
 struct Variant {
   std::string name;
-  std::function<DistanceResult(const Polytope&, const Polytope&, const GjkDistanceOptions&)>
-      run;
+  std::function<DistanceResult(const Polytope&, const Polytope&, const GjkDistanceOptions&)> run;
 };
 
 std::vector<Variant> variants() {
@@ -68,8 +67,7 @@ constexpr double kBand = 1e-10;
 
 }  // namespace
 
-TEST_CASE("distance variants agree with the exact oracle on 300 seeded pairs",
-          "[unit][variants]") {
+TEST_CASE("distance variants agree with the exact oracle on 300 seeded pairs", "[unit][variants]") {
   Rng rng(4242);
   const auto all = variants();
   int intersecting = 0, separated = 0;
@@ -81,8 +79,8 @@ TEST_CASE("distance variants agree with the exact oracle on 300 seeded pairs",
     exact.intersect ? ++intersecting : ++separated;
     for (const Variant& v : all) {
       const DistanceResult r = v.run(a, b, {});
-      INFO("pair " << i << " " << v.name << " exact distance " << exact.distance << " size "
-                   << size << " termination " << to_string(r.termination));
+      INFO("pair " << i << " " << v.name << " exact distance " << exact.distance << " size " << size
+                   << " termination " << to_string(r.termination));
       CHECK(r.termination != Termination::step_limit);
       CHECK(r.termination != Termination::numerical_failure);
       if (exact.intersect || exact.distance > kBand * size) CHECK(r.intersect == exact.intersect);
@@ -126,9 +124,9 @@ TEST_CASE("convergence criteria: each stops within its documented bound",
   Rng rng(99);
   int checked = 0;
   for (int i = 0; i < 120; ++i) {
-    const auto pair = testing::random_pair(rng, i % 2 ? CloudKind::cube : CloudKind::sphere,
-                                           rng.integer(16, 64), rng.integer(16, 64),
-                                           rng.log_uniform(1e-3, 1));
+    const auto pair =
+        testing::random_pair(rng, i % 2 ? CloudKind::cube : CloudKind::sphere, rng.integer(16, 64),
+                             rng.integer(16, 64), rng.log_uniform(1e-3, 1));
     const Polytope a(pair.a), b(pair.b);
     const auto exact = exact::solve(a.vertices(), b.vertices());
     if (exact.intersect) continue;
@@ -159,7 +157,8 @@ TEST_CASE("convergence criteria: each stops within its documented bound",
       CHECK(r.iterations <= tight.iterations);
       CHECK(s.iterations <= tight.iterations);
       CHECK(t.iterations <= tight.iterations);
-      for (const DistanceResult* x : {&r, &s, &t}) CHECK(x->termination == Termination::converged);
+      for (const DistanceResult* x : {&r, &s, &t})
+        CHECK(x->termination == Termination::converged);
       ++checked;
     }
   }
@@ -186,7 +185,8 @@ TEST_CASE("nesterov: momentum, restarts, traces and the step limit", "[unit][nes
     CHECK(traced.termination == plain.termination);
     REQUIRE(recorder.iterations.size() == static_cast<std::size_t>(plain.iterations));
     int restarts = 0;
-    for (const auto& t : recorder.iterations) restarts += t.step == GjkStep::momentum_restart;
+    for (const auto& t : recorder.iterations)
+      restarts += t.step == GjkStep::momentum_restart;
     CHECK(restarts <= 1);  // the restart is permanent
     restarted += restarts;
     if (plain.termination == Termination::converged && !plain.intersect) {
@@ -236,13 +236,12 @@ TEMPLATE_TEST_CASE("warm start from the previous simplex: same answers, no more 
   Simplex previous;
   for (int f = 0; f <= 240; ++f) {
     const double s = f / 240.0;
-    const Pose pose = Pose::from_quaternion(
-        Quat(Eigen::AngleAxisd(1.5 * s, Vec3(1, 2, 3).normalized())),
-        Vec3(-5 + 10 * s, 1.2 - 1.5 * s, 0.4));
+    const Pose pose =
+        Pose::from_quaternion(Quat(Eigen::AngleAxisd(1.5 * s, Vec3(1, 2, 3).normalized())),
+                              Vec3(-5 + 10 * s, 1.2 - 1.5 * s, 0.4));
     const Polytope b = b0.transformed(pose);
     const DistanceResult cold = gjk_distance_with<TestType>(a, b, {});
-    const DistanceResult warm =
-        gjk_distance_warm_with<TestType>(a, b, previous.vertices(), {});
+    const DistanceResult warm = gjk_distance_warm_with<TestType>(a, b, previous.vertices(), {});
     INFO("frame " << f << " cold " << cold.distance << " (" << cold.iterations << " it) warm "
                   << warm.distance << " (" << warm.iterations << " it)");
     CHECK(warm.intersect == cold.intersect);
@@ -258,8 +257,8 @@ TEMPLATE_TEST_CASE("warm start from the previous simplex: same answers, no more 
   CHECK(contacts > 20);
   CHECK(contacts < frames - 20);
   CHECK(warm_total < cold_total);
-  WARN("warm start: " << warm_total << " iterations vs " << cold_total << " cold over "
-                      << frames << " frames");
+  WARN("warm start: " << warm_total << " iterations vs " << cold_total << " cold over " << frames
+                      << " frames");
 
   // An empty start is the cold query, bit for bit.
   const Polytope b = b0.transformed(Pose::from_translation(Vec3(2.5, 0.1, 0.2)));

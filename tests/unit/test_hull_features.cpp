@@ -12,8 +12,8 @@
 #include "gjklab/geometry/shapes.hpp"
 
 using namespace gjklab;
-using exact::HullFeatures;
 using exact::hull_features;
+using exact::HullFeatures;
 
 namespace {
 
@@ -29,8 +29,10 @@ void check_faces(const HullFeatures& h) {
     REQUIRE(loop.size() >= 3);
     const Vec3& n = h.face_normals[f];
     const double offset = n.dot(h.vertices[loop[0]]);
-    for (int i : loop) CHECK(std::abs(n.dot(h.vertices[i]) - offset) <= 1e-14);
-    for (const Vec3& v : h.vertices) CHECK(n.dot(v) <= offset + 1e-14);
+    for (int i : loop)
+      CHECK(std::abs(n.dot(h.vertices[i]) - offset) <= 1e-14);
+    for (const Vec3& v : h.vertices)
+      CHECK(n.dot(v) <= offset + 1e-14);
     const Vec3 area = (h.vertices[loop[1]] - h.vertices[loop[0]])
                           .cross(h.vertices[loop[2]] - h.vertices[loop[0]]);
     CHECK(area.dot(n) > 0);
@@ -43,9 +45,9 @@ TEST_CASE("hull features: a box has 6 faces, 12 edges, 3 edge directions", "[uni
   // Extra points inside faces and on edges, and an interior point, must not add features.
   const Polytope box = shapes::box();
   std::vector<Vec3> cloud(box.vertices().begin(), box.vertices().end());
-  cloud.push_back(Vec3(0.5, 0.1, 0.2));    // inside a face
-  cloud.push_back(Vec3(0.5, 0.5, 0.0));    // on an edge
-  cloud.push_back(Vec3(0.0, 0.1, -0.2));   // interior
+  cloud.push_back(Vec3(0.5, 0.1, 0.2));   // inside a face
+  cloud.push_back(Vec3(0.5, 0.5, 0.0));   // on an edge
+  cloud.push_back(Vec3(0.0, 0.1, -0.2));  // interior
   const HullFeatures h = hull_features(cloud);
   CHECK(h.dimension == 3);
   CHECK(h.vertices.size() == 8);
@@ -58,7 +60,8 @@ TEST_CASE("hull features: a box has 6 faces, 12 edges, 3 edge directions", "[uni
     CHECK(contains(h.face_normals, Vec3(-axis)));
     CHECK(contains(h.edge_directions, axis));  // canonical sign: largest component positive
   }
-  for (const auto& loop : h.faces) CHECK(loop.size() == 4);
+  for (const auto& loop : h.faces)
+    CHECK(loop.size() == 4);
   check_faces(h);
 }
 
@@ -70,7 +73,8 @@ TEST_CASE("hull features: parallel edges and opposite faces round identically", 
   std::vector<Vec3> cloud;
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
-      for (int k = 0; k < 2; ++k) cloud.push_back(o + i * u + j * v + k * w);
+      for (int k = 0; k < 2; ++k)
+        cloud.push_back(o + i * u + j * v + k * w);
   const HullFeatures h = hull_features(cloud);
   CHECK(h.face_normals.size() == 6);
   CHECK(h.edge_directions.size() == 3);
@@ -106,8 +110,8 @@ TEST_CASE("hull features: a random cloud satisfies Euler's formula", "[unit][hul
 
 TEST_CASE("hull features: flat, collinear and single-point clouds", "[unit][hull]") {
   SECTION("a square with a point on an edge and one inside") {
-    const HullFeatures h = hull_features(std::vector<Vec3>{
-        {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}, {1, 0, 1}, {1, 1, 1}});
+    const HullFeatures h = hull_features(
+        std::vector<Vec3>{{0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}, {1, 0, 1}, {1, 1, 1}});
     CHECK(h.dimension == 2);
     CHECK(h.vertices.size() == 4);
     REQUIRE(h.face_normals.size() == 2 + 4);  // ±m, then one in-plane normal per edge

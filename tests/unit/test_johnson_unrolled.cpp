@@ -5,8 +5,8 @@
 #include <bit>
 #include <cstring>
 
-#include "gjklab/gjk/johnson.hpp"
 #include "../support/random_pairs.hpp"
+#include "gjklab/gjk/johnson.hpp"
 
 using namespace gjklab;
 
@@ -83,18 +83,26 @@ TEST_CASE("unrolled Johnson matches the generic recursion bit for bit", "[unit][
     const int count = 1 + trial % 4;
     std::array<Vec3, 4> y;
     const double scale = rng.log_uniform(1e-6, 1e6);
-    for (auto& p : y) p = scale * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    for (auto& p : y)
+      p = scale * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
     // Degenerate simplices: repeated, collinear and coplanar points, and exact small integers.
     switch (trial % 7) {
-      case 1: y[count - 1] = y[0]; break;
-      case 2: y[count - 1] = 0.5 * (y[0] + y[1 % count]); break;
+      case 1:
+        y[count - 1] = y[0];
+        break;
+      case 2:
+        y[count - 1] = 0.5 * (y[0] + y[1 % count]);
+        break;
       case 3:
-        for (auto& p : y) p.z() = 0.25 * scale;
+        for (auto& p : y)
+          p.z() = 0.25 * scale;
         break;
       case 4:
-        for (auto& p : y) p = Vec3(rng.integer(-2, 2), rng.integer(-2, 2), rng.integer(-2, 2));
+        for (auto& p : y)
+          p = Vec3(rng.integer(-2, 2), rng.integer(-2, 2), rng.integer(-2, 2));
         break;
-      default: break;
+      default:
+        break;
     }
     const JohnsonCofactors a = johnson_cofactors(y, count), b = reference_cofactors(y, count);
     REQUIRE(same_bits(a.delta, b.delta));

@@ -18,18 +18,22 @@ struct Run {
 
 Run run_cli(std::vector<std::string> args, const std::string& input = "") {
   std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args) argv.push_back(a.c_str());
+  for (const auto& a : args)
+    argv.push_back(a.c_str());
   std::istringstream in(input);
   std::ostringstream out, err;
   Run r;
   r.status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
   std::istringstream lines(out.str());
-  for (std::string line; std::getline(lines, line);) r.lines.push_back(nlohmann::json::parse(line));
+  for (std::string line; std::getline(lines, line);)
+    r.lines.push_back(nlohmann::json::parse(line));
   r.err = err.str();
   return r;
 }
 
-std::string data(const char* name) { return std::string(GJKLAB_TEST_DATA_DIR) + "/" + name; }
+std::string data(const char* name) {
+  return std::string(GJKLAB_TEST_DATA_DIR) + "/" + name;
+}
 
 }  // namespace
 
@@ -65,7 +69,8 @@ TEST_CASE("query adds depth and normal for penetration algorithms", "[unit][quer
       R"({"id": "cubes", "a": [[-1,-1,-1],[1,-1,-1],[-1,1,-1],[1,1,-1],[-1,-1,1],[1,-1,1],[-1,1,1],[1,1,1]],)"
       R"( "b": [[-1,-1,0.9],[1,-1,0.9],[-1,1,0.9],[1,1,0.9],[-1,-1,2.9],[1,-1,2.9],[-1,1,2.9],[1,1,2.9]]})"
       "\n";
-  const Run r = run_cli({"query", "--cases", "-", "--algorithms", "epa,sat,exact", "--depth"}, cases);
+  const Run r =
+      run_cli({"query", "--cases", "-", "--algorithms", "epa,sat,exact", "--depth"}, cases);
   REQUIRE(r.status == 0);
   REQUIRE(r.lines.size() == 3);
   for (const auto& j : r.lines) {
@@ -92,18 +97,23 @@ TEST_CASE("query reads .obj vertices and selects algorithms", "[unit][query]") {
   CHECK(r.lines[1]["intersect"] == true);
 }
 
-TEST_CASE("query --cases: bad lines are reported and valid cases still answered",
-          "[unit][query]") {
+TEST_CASE("query --cases: bad lines are reported and valid cases still answered", "[unit][query]") {
   const std::string cases =
-      R"({"id": "ok", "a": [[0,0,0],[1,0,0],[0,1,0]], "b": [[0,0,2],[1,1,2]]})" "\n"
-      R"({"id": "broken", "a": [[0,0,0]], "b": )" "\n"
+      R"({"id": "ok", "a": [[0,0,0],[1,0,0],[0,1,0]], "b": [[0,0,2],[1,1,2]]})"
       "\n"
-      R"({"id": "empty", "a": [], "b": [[0,0,0]]})" "\n"
-      R"({"id": "huge", "a": [[1e999,0,0]], "b": [[0,0,0]]})" "\n"
-      R"({"id": "short", "a": [[1,2]], "b": [[0,0,0]]})" "\n"
-      R"({"a": [[0,0,0]], "b": [[0,0,0.5]]})" "\n";
-  const Run r = run_cli({"query", "--cases", "-", "--algorithms", "gjk-johnson,exact",
-                         "--threads", "2"}, cases);
+      R"({"id": "broken", "a": [[0,0,0]], "b": )"
+      "\n"
+      "\n"
+      R"({"id": "empty", "a": [], "b": [[0,0,0]]})"
+      "\n"
+      R"({"id": "huge", "a": [[1e999,0,0]], "b": [[0,0,0]]})"
+      "\n"
+      R"({"id": "short", "a": [[1,2]], "b": [[0,0,0]]})"
+      "\n"
+      R"({"a": [[0,0,0]], "b": [[0,0,0.5]]})"
+      "\n";
+  const Run r = run_cli(
+      {"query", "--cases", "-", "--algorithms", "gjk-johnson,exact", "--threads", "2"}, cases);
   CHECK(r.status == 1);
   REQUIRE(r.lines.size() == 2 + 4 + 2);
   // Input order is kept: ok (2 lines), four errors, then the id-less case named by its line.
@@ -114,14 +124,16 @@ TEST_CASE("query --cases: bad lines are reported and valid cases still answered"
   CHECK(r.lines[3]["id"] == "empty");
   CHECK(r.lines[4]["id"] == "huge");
   CHECK(r.lines[5]["id"] == "short");
-  for (int i = 2; i < 6; ++i) CHECK(r.lines[i].contains("error"));
+  for (int i = 2; i < 6; ++i)
+    CHECK(r.lines[i].contains("error"));
   CHECK(r.lines[6]["id"] == "line 7");
   CHECK(r.lines[7]["distance"] == 0.5);
   // stderr names the source, the line and the id of each problem.
   CHECK_THAT(r.err, Catch::Contains("<stdin>:2: case 'broken': malformed JSON"));
   CHECK_THAT(r.err, Catch::Contains("<stdin>:4: case 'empty': cloud a: empty point cloud"));
   CHECK_THAT(r.err, Catch::Contains("<stdin>:5: case 'huge'"));
-  CHECK_THAT(r.err, Catch::Contains("<stdin>:6: case 'short': cloud a point 0: expected [x, y, z]"));
+  CHECK_THAT(r.err,
+             Catch::Contains("<stdin>:6: case 'short': cloud a point 0: expected [x, y, z]"));
 }
 
 TEST_CASE("query: missing and malformed point files exit 1 with the file and line",
@@ -157,8 +169,8 @@ TEST_CASE("gjklab binary: query runs end to end with the documented exit codes",
   const std::string ok = bin + " query " + data("tetra.xyz") + " " + data("box_shifted.off") +
                          " --algorithms gjk-johnson > /dev/null 2>&1";
   CHECK(std::system(ok.c_str()) == 0);
-  const std::string bad = bin + " query " + data("tetra.xyz") + " " + data("bad_nan.xyz") +
-                          " > /dev/null 2>&1";
+  const std::string bad =
+      bin + " query " + data("tetra.xyz") + " " + data("bad_nan.xyz") + " > /dev/null 2>&1";
   const int status = std::system(bad.c_str());
   CHECK(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 1);

@@ -25,7 +25,9 @@ using testing::Rng;
 
 namespace {
 
-Polytope moved(const Polytope& p, const Vec3& t) { return p.transformed(Pose::from_translation(t)); }
+Polytope moved(const Polytope& p, const Vec3& t) {
+  return p.transformed(Pose::from_translation(t));
+}
 
 SatResult sat(const Polytope& a, const Polytope& b, const SatOptions& o = {}) {
   return peers::sat_query(SatShape(a.vertices()), SatShape(b.vertices()), o);
@@ -46,7 +48,8 @@ bool check_against_exact(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
   const double margin = exact.intersect ? *exact.depth : exact.distance;
   const bool in_band = margin <= band * size;
   if (!in_band) CHECK(r.intersect == exact.intersect);
-  if (exact.intersect && r.intersect) CHECK(std::abs(r.depth - *exact.depth) <= depth_tolerance * size);
+  if (exact.intersect && r.intersect)
+    CHECK(std::abs(r.depth - *exact.depth) <= depth_tolerance * size);
   if (!exact.intersect && !r.intersect) CHECK(r.separation <= exact.distance * (1 + 1e-14));
   return in_band;
 }
@@ -102,7 +105,8 @@ TEST_CASE("sat: flat, collinear and point shapes agree with the exact oracle", "
   const Polytope unit_box = shapes::box();
   const std::vector<Vec3> box(unit_box.vertices().begin(), unit_box.vertices().end());
   auto shift = [](std::vector<Vec3> p, const Vec3& t) {
-    for (Vec3& v : p) v += t;
+    for (Vec3& v : p)
+      v += t;
     return p;
   };
   struct Pair {
@@ -149,7 +153,7 @@ TEST_CASE("sat: agrees with the exact oracle on seeded random pairs", "[unit][sa
     const CloudKind kind = i % 2 ? CloudKind::cube : CloudKind::sphere;
     const int na = static_cast<int>(std::round(rng.log_uniform(4, 32)));
     const int nb = static_cast<int>(std::round(rng.log_uniform(4, 32)));
-    const double gap = (i % 4 < 2)   ? rng.log_uniform(1e-9, 1)
+    const double gap = (i % 4 < 2)    ? rng.log_uniform(1e-9, 1)
                        : (i % 4 == 2) ? -rng.log_uniform(1e-9, 0.1)
                                       : -rng.uniform(0.1, 1.0);
     const auto pair = testing::random_pair(rng, kind, na, nb, gap);
@@ -164,13 +168,15 @@ TEST_CASE("sat: agrees with the exact oracle on seeded random pairs", "[unit][sa
       std::vector<Vec3> p;
       const int kind = i % 3;  // polygon, segment, polygon vs segment
       const int count = kind == 1 ? 2 : n;
-      for (int k = 0; k < count; ++k) p.emplace_back(rng.uniform(-1, 1), rng.uniform(-1, 1), z);
+      for (int k = 0; k < count; ++k)
+        p.emplace_back(rng.uniform(-1, 1), rng.uniform(-1, 1), z);
       return p;
     };
     const double dz = i % 5 == 0 ? 0.25 : 0.0;
     std::vector<Vec3> a = flat(rng.integer(3, 12), 0.0), b = flat(rng.integer(3, 12), dz);
     const Vec3 t(rng.uniform(-2, 2), rng.uniform(-2, 2), 0);
-    for (Vec3& v : b) v += t;
+    for (Vec3& v : b)
+      v += t;
     INFO("flat pair " << i);
     if (check_against_exact(a, b)) ++in_band;
     ++flat_pairs;
@@ -179,8 +185,8 @@ TEST_CASE("sat: agrees with the exact oracle on seeded random pairs", "[unit][sa
   CHECK(separated > 50);
   CHECK(flat_pairs == 100);
   WARN("sat vs exact: " << intersecting << " intersecting, " << separated
-                        << " separated random pairs, " << flat_pairs << " flat pairs; "
-                        << in_band << " inside the touching band (booleans not compared)");
+                        << " separated random pairs, " << flat_pairs << " flat pairs; " << in_band
+                        << " inside the touching band (booleans not compared)");
 }
 
 TEST_CASE("sat: scaling with the vertex count, against GJK", "[.sat-scaling]") {
@@ -227,8 +233,8 @@ TEST_CASE("sat: scaling with the vertex count, against GJK", "[.sat-scaling]") {
       return v[v.size() / 2];
     };
     table << n << "  " << pairs << " | " << median(sat_in) << "  " << median(sat_out) << "  "
-          << axes / pairs << " | " << median(gjk) << "  " << median(gbool) << "  "
-          << median(epa) << "\n";
+          << axes / pairs << " | " << median(gjk) << "  " << median(gbool) << "  " << median(epa)
+          << "\n";
   }
   WARN(table.str());
 }

@@ -106,19 +106,33 @@ TEMPLATE_TEST_CASE("sub-algorithms: degenerate simplices", "[unit][subalgorithm]
       {"repeated point in a segment", {Vec3(1, 2, 3), Vec3(1, 2, 3)}, 2, Vec3(1, 2, 3)},
       {"collinear triangle", {Vec3(1, 1, -1), Vec3(1, 1, 2), Vec3(1, 1, 4)}, 3, Vec3(1, 1, 0)},
       {"collinear triangle, middle point nearest",
-       {Vec3(1, 1, 3), Vec3(1, 1, 1), Vec3(1, 1, 2)}, 3, Vec3(1, 1, 1)},
-      {"triangle with a repeated vertex", {Vec3(-1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)}, 3,
+       {Vec3(1, 1, 3), Vec3(1, 1, 1), Vec3(1, 1, 2)},
+       3,
+       Vec3(1, 1, 1)},
+      {"triangle with a repeated vertex",
+       {Vec3(-1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)},
+       3,
        Vec3(0, 1, 1)},
-      {"triangle collapsed to a point", {Vec3(2, 1, 1), Vec3(2, 1, 1), Vec3(2, 1, 1)}, 3,
+      {"triangle collapsed to a point",
+       {Vec3(2, 1, 1), Vec3(2, 1, 1), Vec3(2, 1, 1)},
+       3,
        Vec3(2, 1, 1)},
       {"coplanar tetrahedron off the origin",
-       {Vec3(-1, -1, 1), Vec3(2, -1, 1), Vec3(-1, 2, 1), Vec3(1, 2, 1)}, 4, Vec3(0, 0, 1)},
+       {Vec3(-1, -1, 1), Vec3(2, -1, 1), Vec3(-1, 2, 1), Vec3(1, 2, 1)},
+       4,
+       Vec3(0, 0, 1)},
       {"coplanar tetrahedron, nearest point on an edge",
-       {Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(3, -1, 1), Vec3(3, 1, 1)}, 4, Vec3(1, 0, 1)},
+       {Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(3, -1, 1), Vec3(3, 1, 1)},
+       4,
+       Vec3(1, 0, 1)},
       {"tetrahedron with two repeated points",
-       {Vec3(1, -1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2), Vec3(1, 1, 2)}, 4, Vec3(1, 0, 2)},
-      {"collinear tetrahedron", {Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(5, 0, 0), Vec3(4, 0, 0)},
-       4, Vec3(2, 0, 0)},
+       {Vec3(1, -1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2), Vec3(1, 1, 2)},
+       4,
+       Vec3(1, 0, 2)},
+      {"collinear tetrahedron",
+       {Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(5, 0, 0), Vec3(4, 0, 0)},
+       4,
+       Vec3(2, 0, 0)},
   };
   for (const Degenerate& c : cases) {
     INFO(c.name);
@@ -128,7 +142,8 @@ TEMPLATE_TEST_CASE("sub-algorithms: degenerate simplices", "[unit][subalgorithm]
     CHECK(r.simplex.size() >= 1);
     CHECK(r.simplex.size() < c.count);  // a degenerate simplex never survives whole
     double sum = 0;
-    for (int k = 0; k < r.simplex.size(); ++k) sum += r.closest.weights[k];
+    for (int k = 0; k < r.simplex.size(); ++k)
+      sum += r.closest.weights[k];
     CHECK(sum == Approx(1.0).epsilon(1e-15));
   }
 }
@@ -141,11 +156,13 @@ TEST_CASE("signed volumes: the paper's sign tests on a tetrahedron around the or
   const SubsimplexSolution s = signed_volumes_closest_point(y, 4);
   REQUIRE(s.found);
   CHECK(s.subset == 0b1111);
-  for (double w : s.weights) CHECK(w == Approx(0.25).epsilon(1e-15));
+  for (double w : s.weights)
+    CHECK(w == Approx(0.25).epsilon(1e-15));
   CHECK(s.closest.norm() <= 1e-15);
   // The same points with the origin moved beyond the face opposite y_0: that face wins.
   std::array<Vec3, 4> moved;
-  for (int i = 0; i < 4; ++i) moved[i] = y[i] - Vec3(3, 3, 3);
+  for (int i = 0; i < 4; ++i)
+    moved[i] = y[i] - Vec3(3, 3, 3);
   const SubsimplexSolution f = signed_volumes_closest_point(moved, 4);
   CHECK(f.subset == 0b1110);
   CHECK((f.closest - Vec3(-8, -8, -8) / 3.0).norm() <= 1e-14);  // the face centroid

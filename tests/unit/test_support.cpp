@@ -6,11 +6,11 @@
 #include <limits>
 #include <random>
 
+#include "../support/random_pairs.hpp"
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/geometry/support.hpp"
-#include "../support/random_pairs.hpp"
 
 using namespace gjklab;
 using gjklab::testing::Rng;
@@ -31,7 +31,9 @@ std::size_t textbook_support(std::span<const Vec3> v, const Vec3& d) {
   return best;
 }
 
-double max_dot(std::span<const Vec3> v, const Vec3& d) { return v[textbook_support(v, d)].dot(d); }
+double max_dot(std::span<const Vec3> v, const Vec3& d) {
+  return v[textbook_support(v, d)].dot(d);
+}
 
 /// Points on a small integer grid (many exact ties and repeated points).
 std::vector<Vec3> grid_cloud(Rng& rng, int n) {
@@ -43,7 +45,8 @@ std::vector<Vec3> grid_cloud(Rng& rng, int n) {
 
 std::vector<Vec3> sphere_cloud(Rng& rng, int n) {
   std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.push_back(rng.unit_vector());
+  for (int i = 0; i < n; ++i)
+    pts.push_back(rng.unit_vector());
   return pts;
 }
 
@@ -79,7 +82,8 @@ TEST_CASE("blocked scan returns the textbook loop's index on random clouds, ties
       REQUIRE(p.support_index(d) == expected);
       ++checks;
       int maximisers = 0;
-      for (const Vec3& v : cloud) maximisers += v.dot(d) == cloud[expected].dot(d);
+      for (const Vec3& v : cloud)
+        maximisers += v.dot(d) == cloud[expected].dot(d);
       ties_seen += maximisers > 1;
     }
   }
@@ -99,12 +103,12 @@ TEST_CASE("blocked scan: zero, NaN and overflowing directions as the textbook lo
     CHECK(p.scan_support_index(d) == textbook_support(cloud, d));
   // The demo shapes have many exact ties along the axes.
   for (const Polytope& s : {shapes::box(), shapes::cone(), shapes::cylinder(), shapes::uv_sphere()})
-    for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0), Vec3(0, 0, -1)})
+    for (const Vec3& d :
+         {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(1, 1, 0), Vec3(0, 0, -1)})
       CHECK(s.support_index(d) == textbook_support(s.vertices(), d));
 }
 
-TEST_CASE("polytope copies keep the scan layout, and vertex_mean is the mean",
-          "[unit][support]") {
+TEST_CASE("polytope copies keep the scan layout, and vertex_mean is the mean", "[unit][support]") {
   Rng rng(3);
   const std::vector<Vec3> cloud = sphere_cloud(rng, 21);
   Polytope p(cloud);
@@ -114,7 +118,8 @@ TEST_CASE("polytope copies keep the scan layout, and vertex_mean is the mean",
   CHECK(copy.support_index(d) == textbook_support(cloud, d));
   CHECK(moved.support_index(d) == textbook_support(cloud, d));
   Vec3 sum = Vec3::Zero();
-  for (const Vec3& v : cloud) sum += v;
+  for (const Vec3& v : cloud)
+    sum += v;
   CHECK(copy.vertex_mean() == sum / 21.0);
   const Polytope scaled = copy.scaled(2.0);
   CHECK(scaled.support_index(d) == textbook_support(scaled.vertices(), d));
@@ -124,12 +129,14 @@ TEST_CASE("hull adjacency: symmetric, in range, and the expected degrees on simp
           "[unit][hill-climbing]") {
   // A cube with repeated corners and an interior point.
   std::vector<Vec3> cube;
-  for (int i = 0; i < 8; ++i) cube.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  for (int i = 0; i < 8; ++i)
+    cube.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
   cube.push_back(Vec3(0.5, 0.5, 0.5));
   cube.push_back(cube[3]);
   const auto adj = exact::hull_vertex_adjacency(cube);
   REQUIRE(adj.size() == cube.size());
-  for (int i = 0; i < 8; ++i) CHECK(adj[i].size() >= 3);
+  for (int i = 0; i < 8; ++i)
+    CHECK(adj[i].size() >= 3);
   CHECK(adj[8].empty());  // interior
   CHECK(adj[9].empty());  // repeated copy of point 3
   for (std::size_t i = 0; i < adj.size(); ++i)
@@ -141,7 +148,8 @@ TEST_CASE("hull adjacency: symmetric, in range, and the expected degrees on simp
   // A flat square: a 4-cycle; a segment with an interior point; a single point.
   const auto square = exact::hull_vertex_adjacency(
       std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0}});
-  for (int i = 0; i < 4; ++i) CHECK(square[i].size() == 2);
+  for (int i = 0; i < 4; ++i)
+    CHECK(square[i].size() == 2);
   CHECK(square[4].empty());
   const auto segment =
       exact::hull_vertex_adjacency(std::vector<Vec3>{{0, 0, 0}, {0.5, 0.5, 0.5}, {1, 1, 1}});

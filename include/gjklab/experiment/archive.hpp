@@ -37,9 +37,9 @@ struct ArchiveHeader {
   std::string experiment_text;  ///< the full experiment file
   std::uint64_t seed = 0;
   std::uint64_t cases_planned = 0;
-  std::string start_time;       ///< ISO 8601, UTC
+  std::string start_time;                                       ///< ISO 8601, UTC
   std::vector<std::pair<std::string, std::string>> provenance;  ///< build_provenance() etc.
-  std::vector<std::string> family_names;  ///< index = CaseRecord::family
+  std::vector<std::string> family_names;                        ///< index = CaseRecord::family
   std::vector<std::string> algorithm_names;
   /// Options of each algorithm (same order as algorithm_names), as (key, value) strings.
   std::vector<std::vector<std::pair<std::string, std::string>>> algorithm_options;
@@ -87,9 +87,9 @@ class ArchiveWriter {
 /// A whole archive read back into memory.
 struct Archive {
   int schema_version = 0;
-  ArchiveHeader header;  ///< algorithm_options has one entry per algorithm
-  std::string end_time;  ///< empty when the run stopped before finish()
-  bool complete = false;  ///< false when the flag is 0 or absent
+  ArchiveHeader header;             ///< algorithm_options has one entry per algorithm
+  std::string end_time;             ///< empty when the run stopped before finish()
+  bool complete = false;            ///< false when the flag is 0 or absent
   std::vector<CaseResult> results;  ///< geometry filled for the cases that kept it
 };
 

@@ -64,21 +64,21 @@ struct BenchRecord {
   std::string suite;
   std::string case_name;
   std::string algorithm;
-  std::string pair;          ///< seed suite: "box-cone"; random: "n=512"; scene: "N=72"
-  std::string placement;     ///< "overlap", "separated" or "scene"
-  int objects = 0;           ///< scene suite: number of objects
-  long long queries = 0;     ///< queries per pass over the case (pairs × configurations)
+  std::string pair;       ///< seed suite: "box-cone"; random: "n=512"; scene: "N=72"
+  std::string placement;  ///< "overlap", "separated" or "scene"
+  int objects = 0;        ///< scene suite: number of objects
+  long long queries = 0;  ///< queries per pass over the case (pairs × configurations)
   double ns_median = 0, ns_p10 = 0, ns_p90 = 0;  ///< per query
   double iterations_mean = 0;
   double support_calls_mean = 0;
   double intersect_fraction = 0;
   std::string reference;
   std::optional<double> ratio_to_reference;
-  std::optional<double> floor_ns;        ///< cost floor per query (full-scan rows only)
+  std::optional<double> floor_ns;  ///< cost floor per query (full-scan rows only)
   std::optional<double> ratio_to_floor;
   std::optional<double> ratio_to_full_scan;  ///< "+hc" rows: against the same algorithm's scan
-  int repetitions = 0;       ///< passes per batch
-  bool via_registry = false; ///< timed through AlgorithmInfo::run (no direct loop)
+  int repetitions = 0;                       ///< passes per batch
+  bool via_registry = false;                 ///< timed through AlgorithmInfo::run (no direct loop)
 };
 
 struct BenchReport {

@@ -19,7 +19,8 @@ namespace gjklab::experiment {
 /// A problem in an experiment file: "FILE:LINE: key 'KEY': PROBLEM".
 class ConfigError : public std::runtime_error {
  public:
-  ConfigError(const std::string& file, int line, const std::string& key, const std::string& problem);
+  ConfigError(const std::string& file, int line, const std::string& key,
+              const std::string& problem);
 };
 
 /// A closed interval [lo, hi]; lo == hi for a fixed value.
@@ -38,7 +39,7 @@ struct PlacementSpec {
   Interval gap{1e-6, 10};      ///< relative to the pair's size
   Interval depth{1e-6, 0.5};   ///< relative to the pair's size
   double overlapping_fraction = 0.5;
-  double spread = 1.0;         ///< relative to the pair's size
+  double spread = 1.0;  ///< relative to the pair's size
 };
 
 /// How each shape of a family is rotated.
@@ -64,9 +65,9 @@ struct FamilySpec {
   /// cylinder and uv_sphere.
   Interval vertices_a{32, 32};
   Interval vertices_b{32, 32};
-  double scale = 1;             ///< every coordinate is multiplied by this
+  double scale = 1;  ///< every coordinate is multiplied by this
   Rotation rotation = Rotation::random;
-  double weight = 1;            ///< relative share of the cases
+  double weight = 1;  ///< relative share of the cases
   PlacementSpec placement;
 
   // ---- degenerate and adversarial families ----
@@ -76,13 +77,13 @@ struct FamilySpec {
   /// all (touching). contact_any draws one of the six exact types per case.
   ContactType contact = ContactType::none;
   bool contact_any = false;
-  Interval angle{1e-6, 1e-6};     ///< parallel-edges contact: angle in radians (log-uniform)
-  Interval aspect{10, 10};        ///< sliver: aspect ratio (log-uniform)
-  Interval scale_ratio{1, 1};     ///< B's scale relative to A's (log-uniform): scale disparity
-  Interval offset{0, 0};          ///< both shapes moved by a random vector of this length
-                                  ///< (length units, log-uniform; 0: not moved)
-  std::string path;               ///< the `file` family's cases file (as written in the file)
-  std::vector<StoredPair> stored; ///< its pairs; case i uses pair i mod size
+  Interval angle{1e-6, 1e-6};      ///< parallel-edges contact: angle in radians (log-uniform)
+  Interval aspect{10, 10};         ///< sliver: aspect ratio (log-uniform)
+  Interval scale_ratio{1, 1};      ///< B's scale relative to A's (log-uniform): scale disparity
+  Interval offset{0, 0};           ///< both shapes moved by a random vector of this length
+                                   ///< (length units, log-uniform; 0: not moved)
+  std::string path;                ///< the `file` family's cases file (as written in the file)
+  std::vector<StoredPair> stored;  ///< its pairs; case i uses pair i mod size
 };
 
 /// One algorithm to run, with its options.
@@ -101,15 +102,15 @@ struct GeometrySweep {
 };
 
 struct ExperimentConfig {
-  std::string source;   ///< the file it was read from (for messages)
-  std::string text;     ///< the file's full text (archived as provenance)
+  std::string source;  ///< the file it was read from (for messages)
+  std::string text;    ///< the file's full text (archived as provenance)
   std::string name;
   std::uint64_t seed = 0;
   std::uint64_t cases = 0;
   int threads = 1;
-  std::string output;   ///< archive path, relative to the working directory
-  bool oracle = true;   ///< run the exact oracle (needed for errors and booleans' correctness)
-  bool depth = false;   ///< also compute exact penetration depth of intersecting pairs
+  std::string output;  ///< archive path, relative to the working directory
+  bool oracle = true;  ///< run the exact oracle (needed for errors and booleans' correctness)
+  bool depth = false;  ///< also compute exact penetration depth of intersecting pairs
   double touching_band = 1e-10;  ///< relative to size: exact answers this close count as touching
   /// Which queries keep a per-iteration trace in the archive: "none", "failing" (failure
   /// class other than none) or "all". Only GJK algorithms can be traced.
@@ -135,6 +136,5 @@ struct ExperimentConfig {
 ExperimentConfig parse_experiment(const std::string& text, const std::string& source);
 /// Reads and parses an experiment file. Throws ConfigError (also for an unreadable file).
 ExperimentConfig load_experiment(const std::filesystem::path& path);
-
 
 }  // namespace gjklab::experiment

@@ -41,8 +41,8 @@ struct RunReport {
   RunSummary summary;
   std::vector<std::pair<std::string, RunSummary>> families;  ///< per family, when several
   double seconds = 0;
-  std::uint64_t cases = 0;     ///< cases written
-  bool complete = false;       ///< false when stopped early (the archive keeps its .tmp name)
+  std::uint64_t cases = 0;          ///< cases written
+  bool complete = false;            ///< false when stopped early (the archive keeps its .tmp name)
   std::uint64_t resumed_cases = 0;  ///< cases taken over from the interrupted run
 };
 

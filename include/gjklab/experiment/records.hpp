@@ -47,22 +47,22 @@ enum class FailureClass : std::uint8_t {
 
 /// Which cloud generator made a shape.
 enum class ShapeKind : std::uint8_t {
-  sphere_points,  ///< points uniform on the unit sphere
-  ball_points,    ///< points uniform in the unit ball
-  cube_points,    ///< points uniform in the cube [-1, 1]^3
-  gaussian,       ///< standard normal cloud
-  box,            ///< demo box (8 vertices)
-  cone,           ///< demo cone (apex + ring)
-  cylinder,       ///< demo cylinder (two rings)
-  uv_sphere,      ///< demo UV sphere
-  flat_points,    ///< points uniform in the unit disk of the plane z = 0 (exactly coplanar)
+  sphere_points,     ///< points uniform on the unit sphere
+  ball_points,       ///< points uniform in the unit ball
+  cube_points,       ///< points uniform in the cube [-1, 1]^3
+  gaussian,          ///< standard normal cloud
+  box,               ///< demo box (8 vertices)
+  cone,              ///< demo cone (apex + ring)
+  cylinder,          ///< demo cylinder (two rings)
+  uv_sphere,         ///< demo UV sphere
+  flat_points,       ///< points uniform in the unit disk of the plane z = 0 (exactly coplanar)
   collinear_points,  ///< points uniform on the segment [-1, 1] of the x axis (exactly collinear)
   duplicate_points,  ///< n points drawn from only three distinct points on the unit sphere
-  single_point,   ///< one point at the origin, whatever n
-  sliver,         ///< box of extents 1 × 1 × 1/aspect (aspect drawn from the family's range)
-  prism,          ///< triangular prism with its ridge along y at z = 0 (contact families)
-  pyramid,        ///< square pyramid with its apex at the origin (contact families)
-  from_file,      ///< a cloud read from a cases file
+  single_point,      ///< one point at the origin, whatever n
+  sliver,            ///< box of extents 1 × 1 × 1/aspect (aspect drawn from the family's range)
+  prism,             ///< triangular prism with its ridge along y at z = 0 (contact families)
+  pyramid,           ///< square pyramid with its apex at the origin (contact families)
+  from_file,         ///< a cloud read from a cases file
 };
 
 /// Contact configurations of the `contact` families, built from exactly representable
@@ -87,9 +87,9 @@ struct CaseRecord {
   Placement placement = Placement::random;
   std::int32_t vertices_a = 0;  ///< input cloud sizes
   std::int32_t vertices_b = 0;
-  double scale = 1;             ///< the family's scale parameter
-  double size = 0;              ///< larger bounding-box diagonal of the two clouds
-  double intended_gap = 0;      ///< drawn gap (> 0) or overlap (< 0), relative to size
+  double scale = 1;         ///< the family's scale parameter
+  double size = 0;          ///< larger bounding-box diagonal of the two clouds
+  double intended_gap = 0;  ///< drawn gap (> 0) or overlap (< 0), relative to size
 };
 
 /// The exact oracle's answer for a case.

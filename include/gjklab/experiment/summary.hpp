@@ -15,15 +15,15 @@ namespace gjklab::experiment {
 struct AlgorithmSummary {
   std::string name;
   std::uint64_t cases = 0;
-  std::uint64_t wrong_booleans = 0;   ///< !boolean_correct (outside the touching band)
-  std::uint64_t distances = 0;        ///< cases with a distance error (distance algorithms)
+  std::uint64_t wrong_booleans = 0;  ///< !boolean_correct (outside the touching band)
+  std::uint64_t distances = 0;       ///< cases with a distance error (distance algorithms)
   double rel_error_median = 0, rel_error_p99 = 0, rel_error_max = 0;  ///< relative to size
   std::array<std::uint64_t, kAllTerminations.size()> terminations{};  ///< by Termination value
-  std::array<std::uint64_t, 9> failures{};  ///< by FailureClass value
+  std::array<std::uint64_t, 9> failures{};                            ///< by FailureClass value
   double iterations_mean = 0;
   std::int32_t iterations_max = 0;
-  std::uint64_t timed = 0;            ///< cases with a time
-  double time_ns_median = 0;          ///< median over cases of the per-case median time
+  std::uint64_t timed = 0;    ///< cases with a time
+  double time_ns_median = 0;  ///< median over cases of the per-case median time
 };
 
 struct RunSummary {

@@ -13,11 +13,12 @@
 // Hill climbing (opt-in). With hull adjacency attached (enable_hill_climbing), support walks
 // the hull's vertex graph from the previous support vertex (the hint) or from a precomputed
 // start vertex for d's cell of a cube map of directions, whichever is better in d, to a vertex
-// no neighbour of which is strictly better. On a convex polytope that vertex maximises d·x. It need not be the *first*
-// maximising vertex of the cloud: on ties (d normal to a face or edge) it may return another
-// maximiser, and it never returns a point that is not a hull vertex. The adjacency is computed
-// from the exact hull by exact::hull_vertex_adjacency. Because of that, and because the hint is
-// state, hill climbing is off by default: experiments compare the scan's answers bit for bit.
+// no neighbour of which is strictly better. On a convex polytope that vertex maximises d·x. It need
+// not be the *first* maximising vertex of the cloud: on ties (d normal to a face or edge) it may
+// return another maximiser, and it never returns a point that is not a hull vertex. The adjacency
+// is computed from the exact hull by exact::hull_vertex_adjacency. Because of that, and because the
+// hint is state, hill climbing is off by default: experiments compare the scan's answers bit for
+// bit.
 #pragma once
 
 #include <atomic>
@@ -98,7 +99,7 @@ class Polytope {
 
   /// Hull graph for hill climbing, in compressed rows.
   struct HullGraph {
-    std::vector<std::uint32_t> offsets;     ///< neighbours of i: [offsets[i], offsets[i+1])
+    std::vector<std::uint32_t> offsets;  ///< neighbours of i: [offsets[i], offsets[i+1])
     std::vector<std::uint32_t> neighbours;
   };
 

@@ -20,7 +20,9 @@ template <SupportMap S>
 class Transformed {
  public:
   Transformed(const S& shape, const Pose& pose) : shape_(&shape), pose_(pose) {}
-  Vec3 support(const Vec3& d) const { return pose_.apply(shape_->support(pose_.to_body_direction(d))); }
+  Vec3 support(const Vec3& d) const {
+    return pose_.apply(shape_->support(pose_.to_body_direction(d)));
+  }
   const S& shape() const { return *shape_; }
   const Pose& pose() const { return pose_; }
 

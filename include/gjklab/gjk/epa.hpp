@@ -106,15 +106,24 @@ enum class EpaStop : std::uint8_t {
 
 constexpr std::string_view to_string(EpaStop s) {
   switch (s) {
-    case EpaStop::converged: return "converged";
-    case EpaStop::repeated_support: return "repeated_support";
-    case EpaStop::flat_difference: return "flat_difference";
-    case EpaStop::separated: return "separated";
-    case EpaStop::gjk_failed: return "gjk_failed";
-    case EpaStop::degenerate_polytope: return "degenerate_polytope";
-    case EpaStop::out_of_faces: return "out_of_faces";
-    case EpaStop::step_limit: return "step_limit";
-    case EpaStop::non_finite: return "non_finite";
+    case EpaStop::converged:
+      return "converged";
+    case EpaStop::repeated_support:
+      return "repeated_support";
+    case EpaStop::flat_difference:
+      return "flat_difference";
+    case EpaStop::separated:
+      return "separated";
+    case EpaStop::gjk_failed:
+      return "gjk_failed";
+    case EpaStop::degenerate_polytope:
+      return "degenerate_polytope";
+    case EpaStop::out_of_faces:
+      return "out_of_faces";
+    case EpaStop::step_limit:
+      return "step_limit";
+    case EpaStop::non_finite:
+      return "non_finite";
   }
   return "unknown";
 }
@@ -125,12 +134,17 @@ constexpr Termination to_termination(EpaStop s) {
     case EpaStop::converged:
     case EpaStop::repeated_support:
     case EpaStop::flat_difference:
-    case EpaStop::separated: return Termination::converged;
-    case EpaStop::degenerate_polytope: return Termination::degenerate_simplex;
+    case EpaStop::separated:
+      return Termination::converged;
+    case EpaStop::degenerate_polytope:
+      return Termination::degenerate_simplex;
     case EpaStop::out_of_faces:
-    case EpaStop::step_limit: return Termination::step_limit;
-    case EpaStop::non_finite: return Termination::numerical_failure;
-    case EpaStop::gjk_failed: break;
+    case EpaStop::step_limit:
+      return Termination::step_limit;
+    case EpaStop::non_finite:
+      return Termination::numerical_failure;
+    case EpaStop::gjk_failed:
+      break;
   }
   return Termination::invalid_input;  // gjk_failed carries GJK's termination instead
 }
@@ -149,8 +163,8 @@ struct EpaResult : PenetrationResult {
 class EpaWorkspace {
  public:
   struct Face {
-    std::array<int, 3> v{};    ///< vertex indices, counter-clockwise seen from outside
-    std::array<int, 3> adj{};  ///< adj[i]: the face across edge (v[i], v[i+1 mod 3])
+    std::array<int, 3> v{};                 ///< vertex indices, counter-clockwise seen from outside
+    std::array<int, 3> adj{};               ///< adj[i]: the face across edge (v[i], v[i+1 mod 3])
     std::array<std::int8_t, 3> adj_edge{};  ///< which edge of adj[i] is that edge
     Vec3 normal = Vec3::Zero();             ///< outward unit normal
     double distance = 0;                    ///< normal·v[0]: signed distance of the plane
@@ -158,10 +172,10 @@ class EpaWorkspace {
     bool alive = false;
   };
   struct HorizonEdge {
-    int from = 0, to = 0;        ///< vertex indices, in the orientation of the removed face
-    int outside_face = 0;        ///< the kept face across the edge
+    int from = 0, to = 0;  ///< vertex indices, in the orientation of the removed face
+    int outside_face = 0;  ///< the kept face across the edge
     std::int8_t outside_edge = 0;
-    int next = -1, prev = -1;    ///< neighbouring horizon edges along the loop
+    int next = -1, prev = -1;  ///< neighbouring horizon edges along the loop
     int new_face = -1;
     Vec3 normal = Vec3::Zero();
     double distance = 0;
@@ -232,8 +246,8 @@ inline Vec3 any_orthogonal(const Vec3& e) {
 /// final simplex starts the expansion). Separated pairs and GJK failures pass GJK's answer
 /// through (see EpaStop). Throws std::invalid_argument if the options are invalid.
 template <SupportMap A, SupportMap B>
-EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
-                       const EpaOptions& options, EpaWorkspace& ws) {
+EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const EpaOptions& options,
+                       EpaWorkspace& ws) {
   detail::validate(options);
   using Face = EpaWorkspace::Face;
   using HorizonEdge = EpaWorkspace::HorizonEdge;
@@ -280,7 +294,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
   for (int i = 0; i < gjk.simplex.size(); ++i) {
     const SimplexVertex& s = gjk.simplex[i];
     bool seen = false;
-    for (int j = 0; j < k; ++j) seen = seen || p[j].w == s.w;
+    for (int j = 0; j < k; ++j)
+      seen = seen || p[j].w == s.w;
     if (seen) continue;
     p[k++] = s;
     radius = std::max(radius, s.w.norm());
@@ -301,8 +316,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
         {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
     double largest_face = 0;
     for (const auto& t : kTriangles)
-      largest_face = std::max(
-          largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
+      largest_face =
+          std::max(largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
     // The smallest height of the tetrahedron is |volume6| / largest_face.
     if (!(std::abs(volume6) > noise() * largest_face)) {
       // Flat: the origin lies in the planar hull of the four points, so in one of the four
@@ -312,8 +327,7 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
       for (int t = 0; t < 4; ++t) {
         std::array<double, 3> l;
         const auto& tri = kTriangles[t];
-        if (!detail::barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l))
-          continue;
+        if (!detail::barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l)) continue;
         const double score = std::min({l[0], l[1], l[2]});
         if (score > best_score) {
           best_score = score;
@@ -347,7 +361,7 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
 
   // ---- blow up to a tetrahedron holding the origin (possibly on its boundary) ----
   if (k == 1) {
-    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
                                       Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
     for (const Vec3& d : axes) {
       const SimplexVertex s = support(d);
@@ -393,7 +407,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
   ws.prepare(options);
   auto& vertices = ws.vertices;
   auto& faces = ws.faces;
-  for (int i = 0; i < 4; ++i) vertices.push_back(p[i]);
+  for (int i = 0; i < 4; ++i)
+    vertices.push_back(p[i]);
 
   // Normal and plane distance of the triangle (i, j, l); false if it has no normal.
   auto plane = [&](int i, int j, int l, Vec3& normal, double& distance) {
@@ -530,7 +545,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
     if (simple) {
       for (int i = 0; i < h_count && simple; ++i) {
         const int next = ws.edge_from[horizon[i].to];
-        if (next < 0) simple = false;
+        if (next < 0)
+          simple = false;
         else {
           horizon[i].next = next;
           horizon[next].prev = i;
@@ -544,7 +560,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
       }
       simple = simple && length == h_count;
     }
-    for (const HorizonEdge& h : horizon) ws.edge_from[h.from] = -1;
+    for (const HorizonEdge& h : horizon)
+      ws.edge_from[h.from] = -1;
     if (!simple) return answer(EpaStop::degenerate_polytope);
 
     // New faces (from, to, w): check them all before changing the polytope.
@@ -567,7 +584,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk,
         ws.free_faces.push_back(f);
       }
     alive -= visible;
-    for (HorizonEdge& h : horizon) h.new_face = allocate_face();
+    for (HorizonEdge& h : horizon)
+      h.new_face = allocate_face();
     for (const HorizonEdge& h : horizon) {
       Face& f = faces[h.new_face];
       f.v = {h.from, h.to, wi};

@@ -45,7 +45,8 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       t.iteration = out.iterations;
       t.direction = d;
       t.support = w;
-      for (int i = 0; i < simplex.size; ++i) t.simplex.push({simplex.points[i]});
+      for (int i = 0; i < simplex.size; ++i)
+        t.simplex.push({simplex.points[i]});
       t.step = step;
       observer.on_iteration(t);
     }
@@ -81,9 +82,14 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
     // Make room for the newest point at the front (a fall-through switch rather than a loop
     // with a data-dependent trip count: the same moves, without the loop's mispredictions).
     switch (simplex.size) {
-      case 3: simplex.points[3] = simplex.points[2]; [[fallthrough]];
-      case 2: simplex.points[2] = simplex.points[1]; [[fallthrough]];
-      default: simplex.points[1] = simplex.points[0];
+      case 3:
+        simplex.points[3] = simplex.points[2];
+        [[fallthrough]];
+      case 2:
+        simplex.points[2] = simplex.points[1];
+        [[fallthrough]];
+      default:
+        simplex.points[1] = simplex.points[0];
     }
     simplex.points[0] = w.w;
     ++simplex.size;
@@ -91,7 +97,8 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       trace(d, w, GjkStep::contact);
       return finish(true, Termination::converged);
     }
-    trace(d, w, out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
+    trace(d, w,
+          out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
   }
   out.iterations = options.max_iterations;
   // No separating plane was found within the budget; the answer is undetermined and reported

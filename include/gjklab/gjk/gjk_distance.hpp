@@ -59,7 +59,8 @@ bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
 
 inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
   std::array<Vec3, 4> y;
-  for (int i = 0; i < simplex.size(); ++i) y[i] = simplex[i].w;
+  for (int i = 0; i < simplex.size(); ++i)
+    y[i] = simplex[i].w;
   return y;
 }
 
@@ -134,8 +135,10 @@ inline bool gap_converged(const GjkDistanceOptions& options, double vv, double v
   switch (options.convergence) {
     case GjkConvergence::relative:
       return gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared;
-    case GjkConvergence::absolute: return gap <= options.absolute_gap_squared;
-    case GjkConvergence::duality_gap: return 2 * gap <= options.duality_gap_tolerance;
+    case GjkConvergence::absolute:
+      return gap <= options.absolute_gap_squared;
+    case GjkConvergence::duality_gap:
+      return 2 * gap <= options.duality_gap_tolerance;
   }
   return false;
 }
@@ -151,8 +154,8 @@ namespace detail {
 /// when nothing usable remains or the reduction fails, the query starts cold.
 template <SubAlgorithm Sub, SupportMap A, SupportMap B>
 void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
-                   std::span<const SimplexVertex> warm, Simplex& simplex,
-                   ClosestOnSimplex& best, int& support_calls) {
+                   std::span<const SimplexVertex> warm, Simplex& simplex, ClosestOnSimplex& best,
+                   int& support_calls) {
   simplex.clear();
   for (const SimplexVertex& given : warm) {
     if (simplex.full()) break;
@@ -317,10 +320,8 @@ DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOption
 /// detail::start_simplex); a usable start costs no support call. Same answer and termination
 /// vocabulary as the cold query, usually in fewer iterations when the pair moved little.
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_distance_warm_with(const A& a, const B& b,
-                                      std::span<const SimplexVertex> start,
-                                      const GjkDistanceOptions& options,
-                                      Observer&& observer = {}) {
+DistanceResult gjk_distance_warm_with(const A& a, const B& b, std::span<const SimplexVertex> start,
+                                      const GjkDistanceOptions& options, Observer&& observer = {}) {
   return detail::gjk_distance_run<Sub>(a, b, options, start, std::forward<Observer>(observer));
 }
 

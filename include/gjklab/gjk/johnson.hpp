@@ -26,8 +26,8 @@ struct JohnsonCofactors {
 };
 
 struct JohnsonSolution {
-  bool found = false;        ///< false when no subset passed both tests
-  std::uint8_t subset = 0;   ///< bitmask of the chosen sub-simplex X
+  bool found = false;               ///< false when no subset passed both tests
+  std::uint8_t subset = 0;          ///< bitmask of the chosen sub-simplex X
   std::array<double, 4> weights{};  ///< barycentric weights λ_i = Δ_i(X)/Δ(X); 0 outside X
   Vec3 closest = Vec3::Zero();      ///< v = Σ λ_i y_i
 };

@@ -48,9 +48,12 @@ enum class GjkConvergence : std::uint8_t {
 
 constexpr std::string_view to_string(GjkConvergence c) {
   switch (c) {
-    case GjkConvergence::relative: return "relative";
-    case GjkConvergence::absolute: return "absolute";
-    case GjkConvergence::duality_gap: return "duality_gap";
+    case GjkConvergence::relative:
+      return "relative";
+    case GjkConvergence::absolute:
+      return "absolute";
+    case GjkConvergence::duality_gap:
+      return "duality_gap";
   }
   return "unknown";
 }

@@ -17,8 +17,8 @@ struct BooleanResult {
 
 /// Answer of a distance query.
 struct DistanceResult {
-  bool intersect = false;  ///< closed shapes share a point (within the contact tolerance)
-  double distance = 0;     ///< Euclidean distance (length units); 0 when intersecting
+  bool intersect = false;         ///< closed shapes share a point (within the contact tolerance)
+  double distance = 0;            ///< Euclidean distance (length units); 0 when intersecting
   Vec3 witness_a = Vec3::Zero();  ///< point of A closest to B (world frame)
   Vec3 witness_b = Vec3::Zero();  ///< point of B closest to A; witness_a − witness_b = v
   Vec3 closest = Vec3::Zero();    ///< v: the point of A − B closest to the origin
@@ -46,7 +46,7 @@ struct PenetrationResult {
   double distance = 0;
   /// Penetration depth (length units) when intersecting; 0 when separated.
   double depth = 0;
-  Vec3 normal = Vec3::UnitX();    ///< unit vector, see above; never NaN
+  Vec3 normal = Vec3::UnitX();  ///< unit vector, see above; never NaN
   /// Intersecting: the deepest points, witness_a − witness_b = depth·normal.
   /// Separated: the closest points, witness_b − witness_a = distance·normal.
   Vec3 witness_a = Vec3::Zero();

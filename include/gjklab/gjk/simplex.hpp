@@ -54,7 +54,8 @@ class Simplex {
   /// Largest ‖w_i‖² over the simplex points: the scale that rounding errors refer to.
   double max_norm_squared() const {
     double m = 0;
-    for (int i = 0; i < size_; ++i) m = std::max(m, vertices_[i].w.squaredNorm());
+    for (int i = 0; i < size_; ++i)
+      m = std::max(m, vertices_[i].w.squaredNorm());
     return m;
   }
 

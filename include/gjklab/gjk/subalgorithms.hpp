@@ -20,14 +20,13 @@
 
 namespace gjklab {
 
-
 /// Johnson's sub-algorithm with van den Bergen's backup procedure (see
 /// johnson_closest_point_with_backup): never undecided for finite points.
 struct JohnsonBackupSubAlgorithm {
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
     return detail::keep_solution(
-        johnson_closest_point_with_backup(detail::simplex_points(simplex), simplex.size()),
-        simplex, out);
+        johnson_closest_point_with_backup(detail::simplex_points(simplex), simplex.size()), simplex,
+        out);
   }
 };
 

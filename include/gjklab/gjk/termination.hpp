@@ -25,13 +25,20 @@ inline constexpr std::array<Termination, 7> kAllTerminations = {
 
 constexpr std::string_view to_string(Termination t) {
   switch (t) {
-    case Termination::converged: return "converged";
-    case Termination::step_limit: return "step_limit";
-    case Termination::no_progress: return "no_progress";
-    case Termination::degenerate_simplex: return "degenerate_simplex";
-    case Termination::cycling: return "cycling";
-    case Termination::numerical_failure: return "numerical_failure";
-    case Termination::invalid_input: return "invalid_input";
+    case Termination::converged:
+      return "converged";
+    case Termination::step_limit:
+      return "step_limit";
+    case Termination::no_progress:
+      return "no_progress";
+    case Termination::degenerate_simplex:
+      return "degenerate_simplex";
+    case Termination::cycling:
+      return "cycling";
+    case Termination::numerical_failure:
+      return "numerical_failure";
+    case Termination::invalid_input:
+      return "invalid_input";
   }
   return "unknown";
 }

@@ -30,16 +30,26 @@ enum class GjkStep : std::uint8_t {
 
 constexpr std::string_view to_string(GjkStep s) {
   switch (s) {
-    case GjkStep::continued: return "continued";
-    case GjkStep::gap_converged: return "gap_converged";
-    case GjkStep::repeated_support: return "repeated_support";
-    case GjkStep::contact: return "contact";
-    case GjkStep::separated: return "separated";
-    case GjkStep::degenerate: return "degenerate";
-    case GjkStep::no_progress: return "no_progress";
-    case GjkStep::non_finite: return "non_finite";
-    case GjkStep::step_limit: return "step_limit";
-    case GjkStep::momentum_restart: return "momentum_restart";
+    case GjkStep::continued:
+      return "continued";
+    case GjkStep::gap_converged:
+      return "gap_converged";
+    case GjkStep::repeated_support:
+      return "repeated_support";
+    case GjkStep::contact:
+      return "contact";
+    case GjkStep::separated:
+      return "separated";
+    case GjkStep::degenerate:
+      return "degenerate";
+    case GjkStep::no_progress:
+      return "no_progress";
+    case GjkStep::non_finite:
+      return "non_finite";
+    case GjkStep::step_limit:
+      return "step_limit";
+    case GjkStep::momentum_restart:
+      return "momentum_restart";
   }
   return "unknown";
 }
@@ -47,13 +57,14 @@ constexpr std::string_view to_string(GjkStep s) {
 /// One iteration of a GJK query.
 struct GjkIterationTrace {
   int iteration = 0;
-  Vec3 direction = Vec3::Zero();   ///< search direction (−v for the distance query; −d_k for Nesterov)
-  SimplexVertex support;           ///< the support point w = a − b taken in this iteration
-  double v_norm_squared = 0;       ///< ‖v‖² before the step (distance query)
-  double v_dot_w = 0;              ///< v·w (distance query)
-  double lower_bound = 0;          ///< best lower bound of the distance so far, max(0, v·w/‖v‖)
-  Simplex simplex;                 ///< the simplex after the step
-  std::array<double, 4> weights{}; ///< barycentric weights of the simplex points (distance)
+  Vec3 direction =
+      Vec3::Zero();       ///< search direction (−v for the distance query; −d_k for Nesterov)
+  SimplexVertex support;  ///< the support point w = a − b taken in this iteration
+  double v_norm_squared = 0;  ///< ‖v‖² before the step (distance query)
+  double v_dot_w = 0;         ///< v·w (distance query)
+  double lower_bound = 0;     ///< best lower bound of the distance so far, max(0, v·w/‖v‖)
+  Simplex simplex;            ///< the simplex after the step
+  std::array<double, 4> weights{};  ///< barycentric weights of the simplex points (distance)
   GjkStep step = GjkStep::continued;
 };
 

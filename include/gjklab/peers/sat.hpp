@@ -63,8 +63,8 @@ class SatShape {
 
 struct SatResult {
   bool intersect = false;
-  double depth = 0;       ///< minimum overlap when intersecting; 0 when separated
-  double separation = 0;  ///< gap along the separating axis when separated; 0 otherwise
+  double depth = 0;             ///< minimum overlap when intersecting; 0 when separated
+  double separation = 0;        ///< gap along the separating axis when separated; 0 otherwise
   Vec3 normal = Vec3::UnitX();  ///< unit axis, oriented from A towards B (see above)
   int axes_tested = 0;          ///< candidate axes projected (parallel edge pairs skipped)
   /// Each tested axis costs the support values of both shapes in both directions, i.e. two
