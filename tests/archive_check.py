@@ -29,7 +29,8 @@ FAILURES = {"none": 0, "touching_band": 1, "step_limit": 2, "no_progress": 3,
 ALGORITHM = {"intersect": bool, "distance": np.float64, "abs_error": np.float64,
              "rel_error": np.float64, "boolean_correct": bool, "iterations": np.int32,
              "support_calls": np.int32, "termination": TERMINATIONS, "time_ns": np.float64,
-             "failure": FAILURES}
+             "failure": FAILURES, "depth": np.float64, "depth_abs_error": np.float64,
+             "depth_rel_error": np.float64}
 GEOMETRY = {"case_id": np.uint64, "a_offset": np.uint64, "a_count": np.uint64,
             "b_offset": np.uint64, "b_count": np.uint64}
 

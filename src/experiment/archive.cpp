@@ -127,7 +127,7 @@ struct ArchiveWriter::Impl {
   };
   struct AlgorithmColumns {
     h5::Column intersect, distance, abs_error, rel_error, boolean_correct, iterations,
-        support_calls, termination, time_ns, failure;
+        support_calls, termination, time_ns, failure, depth, depth_abs_error, depth_rel_error;
   };
   struct GeometryColumns {
     h5::Column case_id, a_offset, a_count, b_offset, b_count, vertices_a, vertices_b;
@@ -164,7 +164,8 @@ struct ArchiveWriter::Impl {
       for (AlgorithmColumns& a : algorithms)
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
-                    &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure});
+                    &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure,
+                    &a.depth, &a.depth_abs_error, &a.depth_rel_error});
       for (TraceColumns& t : traces)
         for (h5::Column* c : t.all())
           all.push_back(c);
@@ -310,6 +311,9 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
           column(gi, p, "termination", t.termination.get(), t.termination.get(), chunk),
           column(gi, p, "time_ns", f64f, f64m, chunk),
           column(gi, p, "failure", t.failure.get(), t.failure.get(), chunk),
+          column(gi, p, "depth", f64f, f64m, chunk),
+          column(gi, p, "depth_abs_error", f64f, f64m, chunk),
+          column(gi, p, "depth_rel_error", f64f, f64m, chunk),
       });
     }
   }
@@ -400,6 +404,9 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     a.termination.append(cx, gather<Termination>(rs, [&](R r) { return alg(r).termination; }));
     a.time_ns.append(cx, gather<double>(rs, [&](R r) { return alg(r).time_ns; }));
     a.failure.append(cx, gather<FailureClass>(rs, [&](R r) { return alg(r).failure; }));
+    a.depth.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth; }));
+    a.depth_abs_error.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth_abs_error; }));
+    a.depth_rel_error.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth_rel_error; }));
   }
   {
     GeometryColumns& g = c.geometry;
@@ -779,6 +786,9 @@ Archive read_archive(const fs::path& path) {
           h5::read_column<Termination>(cx, gi, p, "termination", t.termination.get(), n);
       const auto time_ns = h5::read_column<double>(cx, gi, p, "time_ns", f64m, n);
       const auto failure = h5::read_column<FailureClass>(cx, gi, p, "failure", t.failure.get(), n);
+      const auto depth = h5::read_column<double>(cx, gi, p, "depth", f64m, n);
+      const auto depth_abs = h5::read_column<double>(cx, gi, p, "depth_abs_error", f64m, n);
+      const auto depth_rel = h5::read_column<double>(cx, gi, p, "depth_rel_error", f64m, n);
       for (std::size_t i = 0; i < n; ++i) {
         AlgorithmRecord& ar = a.results[i].algorithms[k];
         ar.intersect = intersect[i] != 0;
@@ -791,6 +801,9 @@ Archive read_archive(const fs::path& path) {
         ar.termination = termination[i];
         ar.time_ns = time_ns[i];
         ar.failure = failure[i];
+        ar.depth = depth[i];
+        ar.depth_abs_error = depth_abs[i];
+        ar.depth_rel_error = depth_rel[i];
       }
     }
   }

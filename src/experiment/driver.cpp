@@ -71,6 +71,7 @@ AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactReco
   AlgorithmRecord r;
   r.intersect = o.intersect;
   if (o.distance) r.distance = *o.distance;
+  if (o.depth) r.depth = *o.depth;
   r.iterations = o.iterations;
   r.support_calls = o.support_calls;
   r.termination = o.termination;
@@ -81,6 +82,10 @@ AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactReco
     }
     r.boolean_correct =
         exact->contact == ContactClass::touching_band || o.intersect == exact->intersect;
+    if (o.depth && o.intersect && exact->intersect && !std::isnan(exact->depth)) {
+      r.depth_abs_error = std::abs(*o.depth - exact->depth);
+      r.depth_rel_error = r.depth_abs_error / size;
+    }
   }
   return r;
 }
@@ -170,7 +175,12 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
 
   std::optional<exact::OracleAnswer> answer;
   if (config.oracle) {
-    answer = exact::solve(a.vertices(), b.vertices(), {.depth = config.depth});
+    // A penetration-depth algorithm is judged against the exact depth, so it is computed for
+    // every pair when one is listed.
+    const bool depth_algorithm =
+        std::any_of(config.algorithms.begin(), config.algorithms.end(),
+                    [](const AlgorithmSpec& s) { return find_algorithm(s.name)->depth; });
+    answer = exact::solve(a.vertices(), b.vertices(), {.depth = config.depth || depth_algorithm});
     result.exact = exact_record(*answer, band);
   }
   std::vector<Outcome> outcomes;

@@ -44,6 +44,7 @@ void SummaryBuilder::add(const CaseResult& result) {
     ++c.counts.cases;
     if (!r.boolean_correct) ++c.counts.wrong_booleans;
     if (!std::isnan(r.rel_error)) c.rel_errors.push_back(r.rel_error);
+    if (!std::isnan(r.depth_rel_error)) c.depth_errors.push_back(r.depth_rel_error);
     if (!std::isnan(r.time_ns)) c.times.push_back(r.time_ns);
     ++c.counts.terminations[static_cast<std::size_t>(r.termination)];
     ++c.counts.failures[static_cast<std::size_t>(r.failure)];
@@ -63,6 +64,10 @@ RunSummary SummaryBuilder::build() const {
     a.rel_error_p99 = quantile(c.rel_errors, 0.99);
     a.rel_error_max =
         c.rel_errors.empty() ? 0 : *std::max_element(c.rel_errors.begin(), c.rel_errors.end());
+    a.depths = c.depth_errors.size();
+    a.depth_error_median = quantile(c.depth_errors, 0.5);
+    a.depth_error_max =
+        c.depth_errors.empty() ? 0 : *std::max_element(c.depth_errors.begin(), c.depth_errors.end());
     a.iterations_mean = a.cases ? c.iteration_sum / static_cast<double>(a.cases) : 0;
     a.timed = c.times.size();
     a.time_ns_median = quantile(c.times, 0.5);
@@ -105,6 +110,16 @@ void print_summary(std::ostream& out, const RunSummary& s) {
       if (n > 0) out << " " << to_string(t) << "=" << n;
     }
     out << "\n";
+  }
+  bool any_depth = false;
+  for (const AlgorithmSummary& a : s.algorithms) any_depth = any_depth || a.depths > 0;
+  if (any_depth) {
+    out << "penetration depth error / size (intersecting pairs, against the exact depth):\n";
+    for (const AlgorithmSummary& a : s.algorithms)
+      if (a.depths > 0)
+        out << "  " << a.name << ": " << a.depths << " pairs, median "
+            << format("%.2e", a.depth_error_median) << ", max " << format("%.2e", a.depth_error_max)
+            << "\n";
   }
   out << "failure classes (other than none):\n";
   for (const AlgorithmSummary& a : s.algorithms) {

@@ -113,6 +113,9 @@ CaseResult make_result(std::uint64_t i, bool oracle) {
     a.termination = kAllTerminations[(i + static_cast<std::uint64_t>(k)) % kAllTerminations.size()];
     a.time_ns = i % 6 == 0 ? kNaN : 125.5 * static_cast<double>(i);
     a.failure = static_cast<FailureClass>(i % 9);
+    a.depth = i % 4 == 0 ? kNaN : 0.25 * static_cast<double>(i);
+    a.depth_abs_error = i % 4 == 0 ? kNaN : 1e-17 * static_cast<double>(i);
+    a.depth_rel_error = i % 4 == 0 ? kNaN : 3e-18 * static_cast<double>(i);
   }
   if (i % 7 == 3) {  // some cases keep their geometry, one of them with an empty cloud
     CaseGeometry& g = r.geometry.emplace();
@@ -191,6 +194,9 @@ void check_same_result(const CaseResult& x, const CaseResult& y) {
     CHECK(a.termination == b.termination);
     CHECK(same(a.time_ns, b.time_ns));
     CHECK(a.failure == b.failure);
+    CHECK(same(a.depth, b.depth));
+    CHECK(same(a.depth_abs_error, b.depth_abs_error));
+    CHECK(same(a.depth_rel_error, b.depth_rel_error));
   }
 
   REQUIRE(x.geometry.has_value() == y.geometry.has_value());

@@ -120,6 +120,12 @@ struct AlgorithmRecord {
   Termination termination = Termination::converged;
   double time_ns = std::numeric_limits<double>::quiet_NaN();  ///< median ns per query, or NaN
   FailureClass failure = FailureClass::none;
+  /// Penetration depth reported for an intersecting pair (length units); NaN otherwise.
+  double depth = std::numeric_limits<double>::quiet_NaN();
+  /// |depth − exact depth| and that divided by size, when both pairs of answers intersect and
+  /// the exact depth was computed; NaN otherwise.
+  double depth_abs_error = std::numeric_limits<double>::quiet_NaN();
+  double depth_rel_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Both clouds of a case, kept in the archive when any answer was wrong or not converged.
