@@ -11,7 +11,7 @@ import numpy as np
 SHAPES = {"sphere_points": 0, "ball_points": 1, "cube_points": 2, "gaussian": 3,
           "box": 4, "cone": 5, "cylinder": 6, "uv_sphere": 7, "flat_points": 8,
           "collinear_points": 9, "duplicate_points": 10, "single_point": 11, "sliver": 12,
-          "prism": 13, "pyramid": 14, "from_file": 15}
+          "prism": 13, "pyramid": 14, "from_file": 15, "mesh": 16}
 PLACEMENTS = {"separated": 0, "overlapping": 1, "random": 2, "touching": 3, "as_given": 4}
 CONTACTS = {"separated": 0, "touching_band": 1, "intersecting": 2}
 TERMINATIONS = {"converged": 0, "step_limit": 1, "no_progress": 2, "degenerate_simplex": 3,

@@ -1,5 +1,6 @@
 #include "gjklab/experiment/config.hpp"
 
+#include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
@@ -64,7 +65,7 @@ constexpr ShapeKind kShapeKinds[] = {
     ShapeKind::single_point,
     ShapeKind::sliver,
 };
-constexpr std::string_view kPairShapes[] = {"contact", "file"};
+constexpr std::string_view kPairShapes[] = {"contact", "file", "mesh"};
 constexpr ContactType kContactTypes[] = {
     ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
     ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
@@ -439,6 +440,40 @@ void read_stored_pairs(const Section& s, const std::string& experiment_file, Fam
   f.shape_a = f.shape_b = ShapeKind::from_file;
 }
 
+/// `path = "..."` of a mesh family: one mesh file, or a folder of them (.off, .obj, .ply,
+/// .stl), read now so that a bad file is a config error.
+void read_meshes(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+  const auto path = s.string("path");
+  if (!path) s.missing("path", "missing (shape = \"mesh\" needs a mesh file or a folder of them)");
+  f.path = *path;
+  std::filesystem::path resolved(*path);
+  if (resolved.is_relative())
+    resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(resolved, ec))
+      if (entry.is_regular_file() && exact::is_mesh_file(entry.path()))
+        files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    if (files.empty())
+      s.fail(*s.find("path"), "path",
+             resolved.string() + " holds no .off, .obj, .ply or .stl file");
+  } else if (std::filesystem::exists(resolved, ec)) {
+    files.push_back(resolved);
+  } else {
+    s.fail(*s.find("path"), "path", resolved.string() + ": no such file or folder");
+  }
+  for (const auto& file : files) {
+    try {
+      f.meshes.push_back(exact::read_mesh_vertices(file));
+    } catch (const std::runtime_error& e) {
+      s.fail(*s.find("path"), "path", e.what());
+    }
+  }
+  f.shape_a = f.shape_b = ShapeKind::mesh;
+}
+
 Rotation read_rotation(const Section& s) {
   const toml::node* node = s.find("rotate");
   if (!node) return Rotation::random;
@@ -464,11 +499,12 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                               : std::nullopt;
   const bool is_contact = pair_shape == "contact";
   const bool is_file = pair_shape == "file";
+  const bool is_mesh = pair_shape == "mesh";
   for (std::string_view key : {"contact", "angle"})
     if (!is_contact && s.find(key))
       s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
-  if (!is_file && s.find("path"))
-    s.fail(*s.find("path"), "path", "applies only to shape = \"file\"");
+  if (!is_file && !is_mesh && s.find("path"))
+    s.fail(*s.find("path"), "path", "applies only to shape = \"file\" or \"mesh\"");
   for (std::string_view key : {"shape_a", "shape_b"})
     if (has_shape && s.find(key))
       s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
@@ -476,6 +512,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     read_contact(s, f);
   } else if (is_file) {
     read_stored_pairs(s, experiment_file, f);
+  } else if (is_mesh) {
+    read_meshes(s, experiment_file, f);
   } else if (has_shape) {
     f.shape_a = f.shape_b = read_shape(s, "shape");
   } else if (s.find("shape_a") || s.find("shape_b")) {
@@ -526,6 +564,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     f.name = "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
   } else if (is_file) {
     f.name = "file:" + f.path;
+  } else if (is_mesh) {
+    f.name = "mesh:" + f.path;
   } else if (f.shape_a == f.shape_b) {
     f.name = std::string(to_string(f.shape_a));
   } else {

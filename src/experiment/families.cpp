@@ -164,7 +164,9 @@ Mat3 draw_rotation(gsl_rng* r, Rotation mode) {
 std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec& family,
                              double scale) {
   const double aspect = kind == ShapeKind::sliver ? log_uniform(r, family.aspect) : 1.0;
-  std::vector<Vec3> cloud = generate_shape(kind, n, r, aspect);
+  std::vector<Vec3> cloud = kind == ShapeKind::mesh
+                                ? family.meshes[gsl_rng_uniform_int(r, family.meshes.size())]
+                                : generate_shape(kind, n, r, aspect);
   const Vec3 mean = vertex_mean(cloud);
   for (Vec3& p : cloud)
     p -= mean;
@@ -372,7 +374,9 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, do
       cloud = pyramid(0, 0, -1);
       break;
     case ShapeKind::from_file:
-      throw std::invalid_argument("generate_shape: from_file clouds come from the family's file");
+    case ShapeKind::mesh:
+      throw std::invalid_argument(
+          "generate_shape: this shape's clouds come from the family's files");
   }
   if (cloud.empty()) throw std::invalid_argument("generate_shape: unknown shape kind");
   return cloud;

@@ -66,6 +66,8 @@ std::string_view to_string(ShapeKind s) {
       return "pyramid";
     case ShapeKind::from_file:
       return "from_file";
+    case ShapeKind::mesh:
+      return "mesh";
   }
   return "unknown";
 }

@@ -66,8 +66,9 @@ RunSummary SummaryBuilder::build() const {
         c.rel_errors.empty() ? 0 : *std::max_element(c.rel_errors.begin(), c.rel_errors.end());
     a.depths = c.depth_errors.size();
     a.depth_error_median = quantile(c.depth_errors, 0.5);
-    a.depth_error_max =
-        c.depth_errors.empty() ? 0 : *std::max_element(c.depth_errors.begin(), c.depth_errors.end());
+    a.depth_error_max = c.depth_errors.empty()
+                            ? 0
+                            : *std::max_element(c.depth_errors.begin(), c.depth_errors.end());
     a.iterations_mean = a.cases ? c.iteration_sum / static_cast<double>(a.cases) : 0;
     a.timed = c.times.size();
     a.time_ns_median = quantile(c.times, 0.5);
@@ -112,7 +113,8 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     out << "\n";
   }
   bool any_depth = false;
-  for (const AlgorithmSummary& a : s.algorithms) any_depth = any_depth || a.depths > 0;
+  for (const AlgorithmSummary& a : s.algorithms)
+    any_depth = any_depth || a.depths > 0;
   if (any_depth) {
     out << "penetration depth error / size (intersecting pairs, against the exact depth):\n";
     for (const AlgorithmSummary& a : s.algorithms)

@@ -82,8 +82,11 @@ struct FamilySpec {
   Interval scale_ratio{1, 1};      ///< B's scale relative to A's (log-uniform): scale disparity
   Interval offset{0, 0};           ///< both shapes moved by a random vector of this length
                                    ///< (length units, log-uniform; 0: not moved)
-  std::string path;                ///< the `file` family's cases file (as written in the file)
+  std::string path;                ///< `file`: the cases file; `mesh`: a mesh file or folder
   std::vector<StoredPair> stored;  ///< its pairs; case i uses pair i mod size
+  /// The `mesh` family's meshes (vertices of each file under `path`, in name order); each
+  /// shape of a case is one of them, drawn uniformly, then rotated, scaled and placed.
+  std::vector<std::vector<Vec3>> meshes;
 };
 
 /// One algorithm to run, with its options.

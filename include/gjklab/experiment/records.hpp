@@ -63,6 +63,7 @@ enum class ShapeKind : std::uint8_t {
   prism,             ///< triangular prism with its ridge along y at z = 0 (contact families)
   pyramid,           ///< square pyramid with its apex at the origin (contact families)
   from_file,         ///< a cloud read from a cases file
+  mesh,              ///< the vertices of a mesh file (OFF, OBJ, PLY, STL)
 };
 
 /// Contact configurations of the `contact` families, built from exactly representable

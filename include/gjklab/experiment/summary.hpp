@@ -20,7 +20,7 @@ struct AlgorithmSummary {
   double rel_error_median = 0, rel_error_p99 = 0, rel_error_max = 0;  ///< relative to size
   std::array<std::uint64_t, kAllTerminations.size()> terminations{};  ///< by Termination value
   std::array<std::uint64_t, 9> failures{};                            ///< by FailureClass value
-  std::uint64_t depths = 0;          ///< cases with a depth error (depth algorithms)
+  std::uint64_t depths = 0;  ///< cases with a depth error (depth algorithms)
   double depth_error_median = 0, depth_error_max = 0;  ///< |depth − exact depth| / size
   double iterations_mean = 0;
   std::int32_t iterations_max = 0;
