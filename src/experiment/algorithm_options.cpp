@@ -138,6 +138,11 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
   if (algorithm == "epa")
     return {"max_iterations", "max_faces", "epa_relative_gap", "relative_noise",
             "gjk_max_iterations"};
+  if (algorithm == "sat") return {"early_exit"};
+#ifdef GJKLAB_HAVE_FCL
+  if (algorithm == "fcl-libccd" || algorithm == "fcl-indep")
+    return {"max_iterations", "epa_max_iterations", "epa_max_faces", "epa_max_vertices"};
+#endif
   return {};
 }
 
@@ -169,6 +174,20 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
       if (!(v > 0)) throw std::invalid_argument("must be > 0, got " + round_trip(v));
       (key == "mpr_tolerance" ? o.libccd.mpr_tolerance : o.libccd.epa_tolerance) = v;
     }
+  } else if (n == "sat") {
+    o.sat.early_exit = boolean(text);
+#ifdef GJKLAB_HAVE_FCL
+  } else if (n == "fcl-libccd" || n == "fcl-indep") {
+    const int v = iterations(key, text);
+    if (key == "max_iterations")
+      o.fcl.max_iterations = v;
+    else if (key == "epa_max_iterations")
+      o.fcl.epa_max_iterations = v;
+    else if (key == "epa_max_faces")
+      o.fcl.epa_max_faces = v;
+    else
+      o.fcl.epa_max_vertices = v;
+#endif
   } else if (n == "epa") {
     if (key == "max_iterations")
       o.epa.max_iterations = iterations(key, text);
@@ -210,6 +229,14 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
             {"epa_relative_gap", round_trip(o.epa.relative_gap)},
             {"relative_noise", round_trip(o.epa.relative_noise)},
             {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)}};
+  if (n == "sat") return {{"early_exit", o.sat.early_exit ? "true" : "false"}};
+#ifdef GJKLAB_HAVE_FCL
+  if (n == "fcl-libccd" || n == "fcl-indep")
+    return {{"max_iterations", std::to_string(o.fcl.max_iterations)},
+            {"epa_max_iterations", std::to_string(o.fcl.epa_max_iterations)},
+            {"epa_max_faces", std::to_string(o.fcl.epa_max_faces)},
+            {"epa_max_vertices", std::to_string(o.fcl.epa_max_vertices)}};
+#endif
   if (n == "exact") return {{"depth", o.oracle.depth ? "true" : "false"}};
   return {};
 }

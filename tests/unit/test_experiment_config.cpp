@@ -506,3 +506,36 @@ relative_gap = 1e-9
                         Contains("key 'algorithm[0].normalize_direction'") &&
                         Contains("applies to gjk-nesterov, not to gjk-voronoi"));
 }
+
+TEST_CASE("depth algorithms take their options from the experiment file", "[unit][config]") {
+  const ExperimentConfig c = parse(kHead + kFamily + R"(
+[[algorithm]]
+name = "sat"
+early_exit = false
+[[algorithm]]
+name = "epa"
+max_iterations = 77
+max_faces = 300
+[[algorithm]]
+name = "libccd-gjk-epa"
+max_depth_iterations = 9
+)");
+  REQUIRE(c.algorithms.size() == 3);
+  CHECK_FALSE(c.algorithms[0].options.sat.early_exit);
+  CHECK(c.algorithms[1].options.epa.max_iterations == 77);
+  CHECK(c.algorithms[1].options.epa.max_faces == 300);
+  CHECK(c.algorithms[2].options.libccd.max_depth_iterations == 9);
+  for (const AlgorithmSpec& spec : c.algorithms) {
+    const AlgorithmSpec back = spec_from_description(spec.name, describe_options(spec));
+    CHECK(describe_options(back) == describe_options(spec));
+  }
+#ifdef GJKLAB_HAVE_FCL
+  const ExperimentConfig f = parse(kHead + kFamily +
+                                   "[[algorithm]]\nname = \"fcl-indep\"\n"
+                                   "epa_max_faces = 64\n");
+  CHECK(f.algorithms[0].options.fcl.epa_max_faces == 64);
+#endif
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + "[[algorithm]]\nname = \"sat\"\nearly_exit = 3\n"),
+      Contains("key 'algorithm[0].early_exit'") && Contains("expected true or false"));
+}
