@@ -41,8 +41,10 @@ TEST_CASE("query two point files: one line per algorithm with the documented fie
           "[unit][query]") {
   const Run r = run_cli({"query", data("tetra.xyz"), data("box_shifted.off")});
   REQUIRE(r.status == 0);
-  REQUIRE(r.lines.size() == gjklab::experiment::algorithms().size());
+  // Every algorithm but sat (left out of the default: its cost is cubic in the vertex count).
+  REQUIRE(r.lines.size() == gjklab::experiment::algorithms().size() - 1);
   for (const auto& j : r.lines) {
+    CHECK(j["algorithm"] != "sat");
     CHECK(j.contains("id"));
     CHECK(j["intersect"] == false);
     CHECK(j.contains("iterations"));
