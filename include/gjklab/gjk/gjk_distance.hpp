@@ -122,6 +122,56 @@ bool reduce_to_closest_face(const Sub& sub, Simplex& simplex, ClosestOnSimplex& 
   return found;
 }
 
+/// The state of one GJK distance query shared by the drivers (plain GJK and Nesterov's): the
+/// result being built, the simplex, the best point so far and the lower bound, with the three
+/// steps every driver takes the same way.
+template <class Observer>
+struct DistanceQueryState {
+  const GjkDistanceOptions& options;
+  Observer& observer;
+  DistanceResult out{};
+  Simplex simplex{};
+  ClosestOnSimplex best{};
+  double lower_bound = 0;
+
+  /// Reports the iteration to the observer when it is enabled (no work otherwise).
+  void trace(const Vec3& direction, const SimplexVertex& w, double vv, double vw, GjkStep step) {
+    if constexpr (Observer::enabled) {
+      GjkIterationTrace t;
+      t.iteration = out.iterations;
+      t.direction = direction;
+      t.support = w;
+      t.v_norm_squared = vv;
+      t.v_dot_w = vw;
+      t.lower_bound = lower_bound;
+      t.simplex = simplex;
+      t.weights = best.weights;
+      t.step = step;
+      observer.on_iteration(t);
+    }
+  }
+
+  /// The result with the best point so far and the given termination.
+  DistanceResult finish(Termination t, bool contact) {
+    out.intersect = contact;
+    out.closest = best.v;
+    out.witness_a = best.witness_a;
+    out.witness_b = best.witness_b;
+    out.distance = contact ? 0.0 : best.v.norm();
+    out.lower_bound = contact ? 0.0 : lower_bound;
+    out.simplex = simplex;
+    out.termination = t;
+    return out;
+  }
+
+  /// Relative to the simplex, not squared: ‖v‖ ≤ relative_contact · max‖y_i‖ means v is
+  /// indistinguishable from the rounding noise of the points it was computed from.
+  bool in_contact(const Vec3& v, const Simplex& s) const {
+    const double tol = options.relative_contact;
+    return v.squaredNorm() <= tol * tol * s.max_norm_squared();
+  }
+};
+
 }  // namespace detail
 
 /// Relative error bound of a rounded 3-vector dot product, |fl(x·y) − x·y| ≤ 3u‖x‖‖y‖ with
@@ -190,47 +240,18 @@ template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
 DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
                                 std::span<const SimplexVertex> warm, Observer&& observer) {
   const Sub sub{};
-  DistanceResult out;
-  Simplex simplex;
-  ClosestOnSimplex best;
+  detail::DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer};
+  DistanceResult& out = q.out;
+  Simplex& simplex = q.simplex;
+  ClosestOnSimplex& best = q.best;
+  double& lower_bound = q.lower_bound;
   start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
   const SimplexVertex& first = simplex[0];
-  double lower_bound = 0;
-
-  // Reports the iteration to the observer (when enabled) and ends the query if t says so.
-  auto trace = [&](const Vec3& direction, const SimplexVertex& w, double vv, double vw,
-                   GjkStep step) {
-    if constexpr (std::remove_reference_t<Observer>::enabled) {
-      GjkIterationTrace t;
-      t.iteration = out.iterations;
-      t.direction = direction;
-      t.support = w;
-      t.v_norm_squared = vv;
-      t.v_dot_w = vw;
-      t.lower_bound = lower_bound;
-      t.simplex = simplex;
-      t.weights = best.weights;
-      t.step = step;
-      observer.on_iteration(t);
-    }
+  auto trace = [&](const Vec3& d, const SimplexVertex& w, double vv, double vw, GjkStep step) {
+    q.trace(d, w, vv, vw, step);
   };
-  auto finish = [&](Termination t, bool contact) {
-    out.intersect = contact;
-    out.closest = best.v;
-    out.witness_a = best.witness_a;
-    out.witness_b = best.witness_b;
-    out.distance = contact ? 0.0 : best.v.norm();
-    out.lower_bound = contact ? 0.0 : lower_bound;
-    out.simplex = simplex;
-    out.termination = t;
-    return out;
-  };
-  // Relative to the simplex, not squared: ‖v‖ ≤ relative_contact · max‖y_i‖ means v is
-  // indistinguishable from the rounding noise of the points it was computed from.
-  auto in_contact = [&](const Vec3& v, const Simplex& s) {
-    const double tol = options.relative_contact;
-    return v.squaredNorm() <= tol * tol * s.max_norm_squared();
-  };
+  auto finish = [&](Termination t, bool contact) { return q.finish(t, contact); };
+  auto in_contact = [&](const Vec3& v, const Simplex& sx) { return q.in_contact(v, sx); };
 
   if (!first.w.allFinite()) return finish(Termination::numerical_failure, false);
   // A warm start may begin with a tetrahedron that encloses the origin.

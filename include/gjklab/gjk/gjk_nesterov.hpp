@@ -48,43 +48,17 @@ template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace
 DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOptions& options,
                                  Observer&& observer = {}) {
   const Sub sub{};
-  DistanceResult out;
-  Simplex simplex;
-  ClosestOnSimplex best;
+  detail::DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer};
+  DistanceResult& out = q.out;
+  Simplex& simplex = q.simplex;
+  ClosestOnSimplex& best = q.best;
+  double& lower_bound = q.lower_bound;
   detail::start_simplex(sub, a, b, options, {}, simplex, best, out.support_calls);
-  double lower_bound = 0;
-
-  auto trace = [&](const Vec3& direction, const SimplexVertex& w, double vv, double vw,
-                   GjkStep step) {
-    if constexpr (std::remove_reference_t<Observer>::enabled) {
-      GjkIterationTrace t;
-      t.iteration = out.iterations;
-      t.direction = direction;
-      t.support = w;
-      t.v_norm_squared = vv;
-      t.v_dot_w = vw;
-      t.lower_bound = lower_bound;
-      t.simplex = simplex;
-      t.weights = best.weights;
-      t.step = step;
-      observer.on_iteration(t);
-    }
+  auto trace = [&](const Vec3& d, const SimplexVertex& w, double vv, double vw, GjkStep step) {
+    q.trace(d, w, vv, vw, step);
   };
-  auto finish = [&](Termination t, bool contact) {
-    out.intersect = contact;
-    out.closest = best.v;
-    out.witness_a = best.witness_a;
-    out.witness_b = best.witness_b;
-    out.distance = contact ? 0.0 : best.v.norm();
-    out.lower_bound = contact ? 0.0 : lower_bound;
-    out.simplex = simplex;
-    out.termination = t;
-    return out;
-  };
-  auto in_contact = [&](const Vec3& v, const Simplex& s) {
-    const double tol = options.relative_contact;
-    return v.squaredNorm() <= tol * tol * s.max_norm_squared();
-  };
+  auto finish = [&](Termination t, bool contact) { return q.finish(t, contact); };
+  auto in_contact = [&](const Vec3& v, const Simplex& sx) { return q.in_contact(v, sx); };
 
   if (!simplex[0].w.allFinite()) return finish(Termination::numerical_failure, false);
   if (simplex.full() || in_contact(best.v, simplex)) return finish(Termination::converged, true);
