@@ -11,7 +11,8 @@ import numpy as np
 SHAPES = {"sphere_points": 0, "ball_points": 1, "cube_points": 2, "gaussian": 3,
           "box": 4, "cone": 5, "cylinder": 6, "uv_sphere": 7, "flat_points": 8,
           "collinear_points": 9, "duplicate_points": 10, "single_point": 11, "sliver": 12,
-          "prism": 13, "pyramid": 14, "from_file": 15, "mesh": 16}
+          "prism": 13, "pyramid": 14, "from_file": 15, "mesh": 16, "sphere": 17,
+          "capsule": 18}
 PLACEMENTS = {"separated": 0, "overlapping": 1, "random": 2, "touching": 3, "as_given": 4}
 CONTACTS = {"separated": 0, "touching_band": 1, "intersecting": 2}
 TERMINATIONS = {"converged": 0, "step_limit": 1, "no_progress": 2, "degenerate_simplex": 3,
@@ -19,7 +20,8 @@ TERMINATIONS = {"converged": 0, "step_limit": 1, "no_progress": 2, "degenerate_s
 
 CASES = {"case_id": np.uint64, "family": np.uint32, "shape_a": SHAPES, "shape_b": SHAPES,
          "placement": PLACEMENTS, "vertices_a": np.int32, "vertices_b": np.int32,
-         "scale": np.float64, "size": np.float64, "intended_gap": np.float64}
+         "scale": np.float64, "size": np.float64, "intended_gap": np.float64,
+         "radius_a": np.float64, "radius_b": np.float64}
 EXACT = {"intersect": bool, "distance": np.float64, "distance2_num": str, "distance2_den": str,
          "depth": np.float64, "hull_vertices_a": np.int32, "hull_vertices_b": np.int32,
          "contact": CONTACTS}

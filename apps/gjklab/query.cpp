@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <istream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <thread>
@@ -21,11 +22,15 @@ using experiment::PointCase;
 using Json = nlohmann::ordered_json;
 
 /// The JSON line of one algorithm's answer for one case.
-std::string answer_line(const std::string& id, const AlgorithmInfo& algorithm,
+std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
                         const experiment::Outcome& o) {
   Json j;
-  j["id"] = id;
+  j["id"] = c.id;
   j["algorithm"] = algorithm.name;
+  if (c.radius_a != 0 || c.radius_b != 0) {
+    j["radius_a"] = c.radius_a;
+    j["radius_b"] = c.radius_b;
+  }
   j["intersect"] = o.intersect;
   if (o.distance) j["distance"] = *o.distance;
   if (o.depth) j["depth"] = *o.depth;
@@ -34,13 +39,16 @@ std::string answer_line(const std::string& id, const AlgorithmInfo& algorithm,
   j["support_calls"] = o.support_calls;
   j["termination"] = to_string(o.termination);
   if (o.exact) {
-    j["distance2_num"] = o.exact->distance_squared.numerator;
-    j["distance2_den"] = o.exact->distance_squared.denominator;
+    // For sphere-swept shapes the exact rationals are the cores' (the swept answers are
+    // irrational in general), and their keys say so.
+    const std::string prefix = o.exact->swept ? "core_" : "";
+    j[prefix + "distance2_num"] = o.exact->distance_squared.numerator;
+    j[prefix + "distance2_den"] = o.exact->distance_squared.denominator;
     j["hull_vertices_a"] = o.exact->hull_vertices_a;
     j["hull_vertices_b"] = o.exact->hull_vertices_b;
     if (o.exact->depth_squared) {
-      j["depth2_num"] = o.exact->depth_squared->numerator;
-      j["depth2_den"] = o.exact->depth_squared->denominator;
+      j[prefix + "depth2_num"] = o.exact->depth_squared->numerator;
+      j[prefix + "depth2_den"] = o.exact->depth_squared->denominator;
     }
   }
   return j.dump();
@@ -55,15 +63,19 @@ std::string error_line(const std::string& id, const std::string& problem,
   return j.dump();
 }
 
-/// Every selected algorithm on one valid case: one output line each.
+/// Every selected algorithm on one valid case: one output line each. Unless the algorithms
+/// were named, those that answer for polytopes only skip sphere-swept cases.
 std::vector<std::string> answer_case(const PointCase& c,
-                                     const std::vector<const AlgorithmInfo*>& selected,
+                                     const std::vector<const AlgorithmInfo*>& selected, bool named,
                                      const experiment::AlgorithmOptions& options) {
   std::vector<std::string> lines;
   const Polytope a(c.a), b(c.b);
+  const SweptRadii radii{c.radius_a, c.radius_b};
   for (const AlgorithmInfo* algorithm : selected) {
+    if (!named && !experiment::handles(*algorithm, radii)) continue;
     try {
-      lines.push_back(answer_line(c.id, *algorithm, algorithm->run(a, b, options)));
+      lines.push_back(
+          answer_line(c, *algorithm, experiment::run_algorithm(*algorithm, a, b, radii, options)));
     } catch (const std::exception& e) {
       lines.push_back(error_line(c.id, e.what(), algorithm));
     }
@@ -78,7 +90,7 @@ std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std
     try {
       return {PointCase{args.files[0] + " vs " + args.files[1],
                         experiment::read_point_file(args.files[0]),
-                        experiment::read_point_file(args.files[1])}};
+                        experiment::read_point_file(args.files[1]), args.radius_a, args.radius_b}};
     } catch (const experiment::InputError& e) {
       return {CaseError{args.files[0] + " vs " + args.files[1], 0, e.what()}};
     }
@@ -117,12 +129,23 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   cmd->add_flag("--depth", args.depth, "exact penetration depth for intersecting pairs (slow)");
+  cmd->add_option("--radius-a", args.radius_a,
+                  "sweep A's hull by a ball of this radius (sphere, capsule, rounded polytope); "
+                  "a cases file gives radius_a per line")
+      ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
+  cmd->add_option("--radius-b", args.radius_b, "sweep B's hull by a ball of this radius")
+      ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
   return cmd;
 }
 
 int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::ostream& err) {
   if (args.cases.empty() == (args.files.size() != 2)) {
     err << "gjklab query: give two point files or --cases FILE (not both)\n";
+    return 2;
+  }
+  if (!args.cases.empty() && (args.radius_a != 0 || args.radius_b != 0)) {
+    err << "gjklab query: --radius-a/--radius-b apply to two point files; a cases file gives "
+           "\"radius_a\" and \"radius_b\" on each line\n";
     return 2;
   }
   std::vector<const AlgorithmInfo*> selected;
@@ -152,7 +175,7 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   auto worker = [&] {
     for (std::size_t i = next++; i < cases.size(); i = next++) {
       if (const auto* c = std::get_if<PointCase>(&cases[i]))
-        lines[i] = answer_case(*c, selected, options);
+        lines[i] = answer_case(*c, selected, !args.algorithms.empty(), options);
     }
   };
   std::vector<std::thread> pool;

@@ -18,6 +18,9 @@ struct QueryArgs {
   int max_iterations = 0;               ///< 0: each algorithm's default
   int threads = 1;
   bool depth = false;  ///< exact penetration depth for intersecting pairs
+  /// Sphere-swept shapes for the two point files (a cases file gives radii per line).
+  double radius_a = 0;
+  double radius_b = 0;
 };
 
 /// Registers the `query` subcommand and its options on app.

@@ -101,13 +101,18 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
     const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
     const Polytope a(geometry.a), b(geometry.b);
     const auto& rec = found->record;
+    const SweptRadii radii{rec.radius_a, rec.radius_b};
     out << "case " << rec.case_id << " of " << args.archive << ": family '"
         << (rec.family < h.family_names.size() ? h.family_names[rec.family] : "?") << "', "
-        << a.size() << " + " << b.size() << " vertices, size " << fmt("%.17g", rec.size) << "\n";
+        << a.size() << " + " << b.size() << " vertices, size " << fmt("%.17g", rec.size);
+    if (radii.any())
+      out << ", swept by radii " << fmt("%.17g", radii.a) << " and " << fmt("%.17g", radii.b);
+    out << "\n";
     if (found->exact)
       out << "exact: intersect " << found->exact->intersect << ", distance "
-          << fmt("%.17g", found->exact->distance) << ", squared " << found->exact->distance2_num
-          << "/" << found->exact->distance2_den << ", " << to_string(found->exact->contact) << "\n";
+          << fmt("%.17g", found->exact->distance)
+          << (radii.any() ? ", cores squared " : ", squared ") << found->exact->distance2_num << "/"
+          << found->exact->distance2_den << ", " << to_string(found->exact->contact) << "\n";
 
     bool all_equal = true, any = false;
     for (std::size_t k = 0; k < h.algorithm_names.size(); ++k) {
@@ -126,17 +131,17 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
       const experiment::AlgorithmSpec spec =
           experiment::spec_from_description(name, h.algorithm_options[k]);
       TraceRecorder trace;
-      const bool traced = args.trace && info->run_traced;
+      const bool traced = args.trace && experiment::can_trace(*info, radii);
       const experiment::Outcome now =
-          traced ? info->run_traced(a, b, spec.options, trace) : info->run(a, b, spec.options);
+          traced ? experiment::run_algorithm_traced(*info, a, b, radii, spec.options, trace)
+                 : experiment::run_algorithm(*info, a, b, radii, spec.options);
       const AlgorithmRecord& then = found->algorithms[k];
       out << label << ": intersect " << now.intersect;
       if (now.distance) out << ", distance " << fmt("%.17g", *now.distance);
       out << ", " << now.iterations << " iterations, " << to_string(now.termination)
           << ", failure class " << to_string(then.failure) << "\n";
       if (traced) print_trace(out, trace);
-      if (args.trace && !info->run_traced)
-        out << "    (no trace: " << name << " is not traceable)\n";
+      if (args.trace && !traced) out << "    (no trace: " << name << " is not traceable)\n";
       const std::string d = differences(now, then);
       out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)
           << "\n";

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "gjklab/exact/hull_features.hpp"
@@ -264,43 +266,139 @@ Outcome run_bullet_epa2(const Polytope& a, const Polytope& b, const AlgorithmOpt
 }
 #endif
 
+// ---- sphere-swept shapes (see gjk/swept.hpp) ---------------------------------------------
+
+using SweptPolytope = SphereSwept<Polytope>;
+
+Outcome swept_gjk_bool(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                       const AlgorithmOptions& o) {
+  return from_boolean(gjk_intersect(SweptPolytope(a, r.a), SweptPolytope(b, r.b), o.gjk_boolean));
+}
+
+Outcome swept_trace_gjk_bool(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                             const AlgorithmOptions& o, TraceRecorder& trace) {
+  return from_boolean(
+      gjk_intersect(SweptPolytope(a, r.a), SweptPolytope(b, r.b), o.gjk_boolean, trace));
+}
+
+/// A GJK distance query on the cores, shifted by the radii.
+template <class Sub>
+Outcome swept_gjk_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                       const AlgorithmOptions& o) {
+  return from_distance(swept_distance(gjk_distance_with<Sub>(a, b, o.gjk_distance), r));
+}
+
+template <class Sub>
+Outcome swept_trace_gjk_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                             const AlgorithmOptions& o, TraceRecorder& trace) {
+  return from_distance(swept_distance(gjk_distance_with<Sub>(a, b, o.gjk_distance, trace), r));
+}
+
+Outcome swept_gjk_johnson(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                          const AlgorithmOptions& o) {
+  return from_distance(swept_distance(gjk_distance(a, b, o.gjk_distance), r));
+}
+
+Outcome swept_trace_gjk_johnson(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                                const AlgorithmOptions& o, TraceRecorder& trace) {
+  return from_distance(swept_distance(gjk_distance(a, b, o.gjk_distance, trace), r));
+}
+
+Outcome swept_gjk_nesterov(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                           const AlgorithmOptions& o) {
+  return from_distance(swept_distance(gjk_nesterov(a, b, o.gjk_nesterov), r));
+}
+
+Outcome swept_trace_gjk_nesterov(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                                 const AlgorithmOptions& o, TraceRecorder& trace) {
+  return from_distance(swept_distance(gjk_nesterov(a, b, o.gjk_nesterov, trace), r));
+}
+
+/// EPA on the cores, shifted by the radii (depth grows by r_A + r_B; cores apart by less than
+/// that overlap by the difference).
+Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                  const AlgorithmOptions& o) {
+  thread_local EpaWorkspace workspace;
+  const EpaResult core = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
+  Outcome out = from_penetration(swept_penetration(core, r), true);
+  out.iterations = core.gjk_iterations + core.iterations;
+  return out;
+}
+
+Outcome swept_libccd_gjk(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                         const AlgorithmOptions& o) {
+  return from_boolean(peers::libccd_gjk_intersect(a, b, o.libccd, r));
+}
+
+Outcome swept_libccd_mpr(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                         const AlgorithmOptions& o) {
+  return from_boolean(peers::libccd_mpr_intersect(a, b, o.libccd, r));
+}
+
+Outcome swept_libccd_gjk_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                             const AlgorithmOptions& o) {
+  return from_libccd_penetration(peers::libccd_gjk_penetration(a, b, o.libccd, r));
+}
+
+Outcome swept_libccd_mpr_depth(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                               const AlgorithmOptions& o) {
+  return from_libccd_penetration(peers::libccd_mpr_penetration(a, b, o.libccd, r));
+}
+
+Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                    const AlgorithmOptions& o) {
+  Outcome out;
+  exact::OracleAnswer answer = exact::solve_swept(a.vertices(), b.vertices(), r.a, r.b, o.oracle);
+  out.intersect = answer.intersect;
+  out.distance = answer.distance;
+  out.depth = answer.depth;
+  out.exact = std::move(answer);
+  return out;
+}
+
 // The optional peers (FCL, Bullet) are listed only when they were built.
 constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
                   "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
-                  trace_gjk_bool},
+                  trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool},
     AlgorithmInfo{"gjk-johnson", AnswerKind::distance,
                   "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson,
-                  trace_gjk_johnson},
+                  trace_gjk_johnson, false, false, swept_gjk_johnson, swept_trace_gjk_johnson},
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk,
-                  nullptr, true},
+                  nullptr, true, false, swept_libccd_gjk},
     AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr,
-                  nullptr, true},
+                  nullptr, true, false, swept_libccd_mpr},
     AlgorithmInfo{"gjk-johnson-backup", AnswerKind::distance,
                   "GJK distance with Johnson's sub-algorithm and van den Bergen's backup "
                   "procedure",
-                  run_gjk_johnson_backup, trace_gjk_with<JohnsonBackupSubAlgorithm>},
+                  run_gjk_johnson_backup, trace_gjk_with<JohnsonBackupSubAlgorithm>, false, false,
+                  swept_gjk_with<JohnsonBackupSubAlgorithm>,
+                  swept_trace_gjk_with<JohnsonBackupSubAlgorithm>},
     AlgorithmInfo{"gjk-sv", AnswerKind::distance,
                   "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)",
-                  run_gjk_sv, trace_gjk_with<SignedVolumesSubAlgorithm>},
+                  run_gjk_sv, trace_gjk_with<SignedVolumesSubAlgorithm>, false, false,
+                  swept_gjk_with<SignedVolumesSubAlgorithm>,
+                  swept_trace_gjk_with<SignedVolumesSubAlgorithm>},
     AlgorithmInfo{"gjk-voronoi", AnswerKind::distance,
                   "GJK distance with Voronoi-region tests (Ericson 2005)", run_gjk_voronoi,
-                  trace_gjk_with<VoronoiSubAlgorithm>},
+                  trace_gjk_with<VoronoiSubAlgorithm>, false, false,
+                  swept_gjk_with<VoronoiSubAlgorithm>, swept_trace_gjk_with<VoronoiSubAlgorithm>},
     AlgorithmInfo{"gjk-nesterov", AnswerKind::distance,
                   "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
-                  run_gjk_nesterov, trace_gjk_nesterov},
+                  run_gjk_nesterov, trace_gjk_nesterov, false, false, swept_gjk_nesterov,
+                  swept_trace_gjk_nesterov},
     AlgorithmInfo{"epa", AnswerKind::distance,
                   "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
-                  run_epa, nullptr, false, true},
+                  run_epa, nullptr, false, true, swept_epa},
     AlgorithmInfo{"sat", AnswerKind::boolean,
                   "separating axis test on exact hull features (face normals, edge cross "
                   "products) with the minimum-overlap depth",
                   run_sat, nullptr, false, true},
     AlgorithmInfo{"libccd-gjk-epa", AnswerKind::boolean,
                   "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
-                  run_libccd_gjk_epa, nullptr, true, true},
+                  run_libccd_gjk_epa, nullptr, true, true, swept_libccd_gjk_epa},
     AlgorithmInfo{"libccd-mpr-depth", AnswerKind::boolean, "libccd's ccdMPRPenetration",
-                  run_libccd_mpr_depth, nullptr, true, true},
+                  run_libccd_mpr_depth, nullptr, true, true, swept_libccd_mpr_depth},
 #ifdef GJKLAB_HAVE_FCL
     AlgorithmInfo{"fcl-libccd", AnswerKind::distance,
                   "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)",
@@ -319,7 +417,7 @@ constexpr std::array kAlgorithms = {
                   run_bullet_epa2, nullptr, true, true},
 #endif
     AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",
-                  run_exact, nullptr, false, true},
+                  run_exact, nullptr, false, true, swept_exact},
 };
 
 }  // namespace
@@ -332,6 +430,41 @@ const AlgorithmInfo* find_algorithm(std::string_view name) {
   for (const AlgorithmInfo& a : kAlgorithms)
     if (a.name == name) return &a;
   return nullptr;
+}
+
+bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii) {
+  return !radii.any() || algorithm.run_swept != nullptr;
+}
+
+bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii) {
+  return radii.any() ? algorithm.run_swept_traced != nullptr : algorithm.run_traced != nullptr;
+}
+
+namespace {
+
+std::invalid_argument polytopes_only(const AlgorithmInfo& algorithm) {
+  return std::invalid_argument("algorithm '" + std::string(algorithm.name) +
+                               "' answers for polytopes only, not for sphere-swept shapes "
+                               "(radius > 0)");
+}
+
+}  // namespace
+
+Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                      const SweptRadii& radii, const AlgorithmOptions& options) {
+  if (!radii.any()) return algorithm.run(a, b, options);
+  if (!algorithm.run_swept) throw polytopes_only(algorithm);
+  return algorithm.run_swept(a, b, radii, options);
+}
+
+Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                             const SweptRadii& radii, const AlgorithmOptions& options,
+                             TraceRecorder& trace) {
+  if (!can_trace(algorithm, radii))
+    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' cannot be traced" +
+                                (radii.any() ? " on sphere-swept shapes" : ""));
+  if (!radii.any()) return algorithm.run_traced(a, b, options, trace);
+  return algorithm.run_swept_traced(a, b, radii, options, trace);
 }
 
 std::string algorithm_names() {

@@ -119,7 +119,7 @@ struct Types {
 struct ArchiveWriter::Impl {
   struct CaseColumns {
     h5::Column case_id, family, shape_a, shape_b, placement, vertices_a, vertices_b, scale, size,
-        intended_gap;
+        intended_gap, radius_a, radius_b;
   };
   struct ExactColumns {
     h5::Column intersect, distance, distance2_num, distance2_den, depth, hull_vertices_a,
@@ -151,12 +151,12 @@ struct ArchiveWriter::Impl {
 
     /// Closes every dataset, reporting the first that fails to close.
     void close(const h5::Context& cx) {
-      std::vector<h5::Column*> all{&cases.case_id,       &cases.family,       &cases.shape_a,
-                                   &cases.shape_b,       &cases.placement,    &cases.vertices_a,
-                                   &cases.vertices_b,    &cases.scale,        &cases.size,
-                                   &cases.intended_gap,  &geometry.case_id,   &geometry.a_offset,
-                                   &geometry.a_count,    &geometry.b_offset,  &geometry.b_count,
-                                   &geometry.vertices_a, &geometry.vertices_b};
+      std::vector<h5::Column*> all{
+          &cases.case_id,    &cases.family,        &cases.shape_a,      &cases.shape_b,
+          &cases.placement,  &cases.vertices_a,    &cases.vertices_b,   &cases.scale,
+          &cases.size,       &cases.intended_gap,  &cases.radius_a,     &cases.radius_b,
+          &geometry.case_id, &geometry.a_offset,   &geometry.a_count,   &geometry.b_offset,
+          &geometry.b_count, &geometry.vertices_a, &geometry.vertices_b};
       if (exact)
         all.insert(all.end(), {&exact->intersect, &exact->distance, &exact->distance2_num,
                                &exact->distance2_den, &exact->depth, &exact->hull_vertices_a,
@@ -273,6 +273,8 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
         column(gi, p, "scale", f64f, f64m, chunk),
         column(gi, p, "size", f64f, f64m, chunk),
         column(gi, p, "intended_gap", f64f, f64m, chunk),
+        column(gi, p, "radius_a", f64f, f64m, chunk),
+        column(gi, p, "radius_b", f64f, f64m, chunk),
     };
   }
   if (h.oracle) {
@@ -374,6 +376,8 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     k.scale.append(cx, gather<double>(rs, [](R r) { return r.record.scale; }));
     k.size.append(cx, gather<double>(rs, [](R r) { return r.record.size; }));
     k.intended_gap.append(cx, gather<double>(rs, [](R r) { return r.record.intended_gap; }));
+    k.radius_a.append(cx, gather<double>(rs, [](R r) { return r.record.radius_a; }));
+    k.radius_b.append(cx, gather<double>(rs, [](R r) { return r.record.radius_b; }));
   }
   if (c.exact) {
     ExactColumns& e = *c.exact;
@@ -721,6 +725,13 @@ Archive read_archive(const fs::path& path) {
     const auto scale = h5::read_column<double>(cx, gi, p, "scale", f64m, n);
     const auto size = h5::read_column<double>(cx, gi, p, "size", f64m, n);
     const auto gap = h5::read_column<double>(cx, gi, p, "intended_gap", f64m, n);
+    // Archives written before sphere-swept shapes have no radius columns: radius 0.
+    auto radius = [&](const char* name) {
+      return h5::has_link(cx, gi, p, name) ? h5::read_column<double>(cx, gi, p, name, f64m, n)
+                                           : std::vector<double>(n, 0.0);
+    };
+    const auto radius_a = radius("radius_a");
+    const auto radius_b = radius("radius_b");
     a.results.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       CaseRecord& c = a.results[i].record;
@@ -734,6 +745,8 @@ Archive read_archive(const fs::path& path) {
       c.scale = scale[i];
       c.size = size[i];
       c.intended_gap = gap[i];
+      c.radius_a = radius_a[i];
+      c.radius_b = radius_b[i];
     }
   }
   if (h.oracle) {

@@ -165,6 +165,16 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
   return out;
 }
 
+/// An optional radius of a sphere-swept shape: 0 when absent, else a finite number >= 0.
+double json_radius(const nlohmann::json& j, const char* key) {
+  if (!j.contains(key)) return 0;
+  const auto& v = j.at(key);
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() >= 0))
+    throw std::invalid_argument(std::string(key) + ": expected a finite number >= 0, got " +
+                                v.dump());
+  return v.get<double>();
+}
+
 /// The "id" string of a line that is not valid JSON, if one can be seen, so that the error
 /// names the case the user wrote.
 std::optional<std::string> id_from_unparsed(std::string_view text) {
@@ -219,6 +229,8 @@ CaseOrError parse_case_line(std::string_view text, int line) {
   try {
     c.a = json_cloud(j, "a");
     c.b = json_cloud(j, "b");
+    c.radius_a = json_radius(j, "radius_a");
+    c.radius_b = json_radius(j, "radius_b");
   } catch (const std::invalid_argument& e) {
     return CaseError{c.id, line, e.what()};
   }
@@ -245,7 +257,10 @@ std::string case_to_json_line(const PointCase& c) {
     return arr;
   };
   // nlohmann writes the shortest decimal that reads back as the same double.
-  return nlohmann::json{{"id", c.id}, {"a", cloud(c.a)}, {"b", cloud(c.b)}}.dump();
+  nlohmann::json j{{"id", c.id}, {"a", cloud(c.a)}, {"b", cloud(c.b)}};
+  if (c.radius_a != 0) j["radius_a"] = c.radius_a;
+  if (c.radius_b != 0) j["radius_b"] = c.radius_b;
+  return j.dump();
 }
 
 }  // namespace gjklab::experiment

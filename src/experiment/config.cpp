@@ -64,6 +64,8 @@ constexpr ShapeKind kShapeKinds[] = {
     ShapeKind::duplicate_points,
     ShapeKind::single_point,
     ShapeKind::sliver,
+    ShapeKind::sphere,
+    ShapeKind::capsule,
 };
 constexpr std::string_view kPairShapes[] = {"contact", "file", "mesh"};
 constexpr ContactType kContactTypes[] = {
@@ -89,6 +91,14 @@ std::string shape_names() {
     names.push_back(to_string(k));
   for (std::string_view pair : kPairShapes)
     names.push_back(pair);
+  return join(names);
+}
+
+/// The algorithms that answer for sphere-swept shapes, for messages.
+std::string swept_algorithm_names() {
+  std::vector<std::string_view> names;
+  for (const AlgorithmInfo& a : algorithms())
+    if (a.run_swept) names.push_back(a.name);
   return join(names);
 }
 
@@ -259,6 +269,18 @@ class Section {
     const double v = number_value(*node, key);
     if (!(v >= 0 && v <= 1)) fail(*node, key, "must be between 0 and 1, got " + round_trip(v));
     return v;
+  }
+
+  /// A number >= 0 (fixed) or a [lo, hi] pair with 0 < lo <= hi (a log-uniform range).
+  std::optional<Interval> radius_interval(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (node->is_number()) {
+      const double v = number_value(*node, key);
+      if (!(v >= 0)) fail(*node, key, "must be >= 0, got " + round_trip(v));
+      return Interval{v, v};
+    }
+    return positive_interval(key);
   }
 
   /// A positive number or a [lo, hi] pair with 0 < lo <= hi.
@@ -434,7 +456,7 @@ void read_stored_pairs(const Section& s, const std::string& experiment_file, Fam
              resolved.string() + ":" + std::to_string(e->line) + ": case '" + e->id +
                  "': " + e->problem);
     const auto& p = std::get<PointCase>(c);
-    f.stored.push_back({p.id, p.a, p.b});
+    f.stored.push_back({p.id, p.a, p.b, p.radius_a, p.radius_b});
   }
   if (f.stored.empty()) s.fail(*s.find("path"), "path", resolved.string() + " holds no cases");
   f.shape_a = f.shape_b = ShapeKind::from_file;
@@ -487,11 +509,36 @@ Rotation read_rotation(const Section& s) {
   s.fail(*node, "rotate", "expected true, false, \"random\", \"none\" or \"axes\"");
 }
 
+/// The radius of a sphere-swept shape of its own kind when the file gives none.
+Interval default_radius(ShapeKind kind) {
+  if (kind == ShapeKind::sphere) return {1, 1};
+  if (kind == ShapeKind::capsule) return {0.5, 0.5};
+  return {0, 0};
+}
+
+/// `radius` (both shapes), `radius_a`, `radius_b`: sphere-swept shapes. Contact and file
+/// families give their pairs exactly, so they take no radius.
+void read_radii(const Section& s, bool exact_pairs, FamilySpec& f) {
+  for (std::string_view key : {"radius", "radius_a", "radius_b"}) {
+    if (!s.find(key)) continue;
+    if (exact_pairs)
+      s.fail(*s.find(key), key,
+             "applies only to generated and mesh families (contact and file pairs are exact)");
+    if (key != "radius" && s.find("radius"))
+      s.fail(*s.find(key), key, "cannot be combined with 'radius' (which sets both radii)");
+  }
+  f.radius_a = default_radius(f.shape_a);
+  f.radius_b = default_radius(f.shape_b);
+  if (const auto r = s.radius_interval("radius")) f.radius_a = f.radius_b = *r;
+  if (const auto r = s.radius_interval("radius_a")) f.radius_a = *r;
+  if (const auto r = s.radius_interval("radius_b")) f.radius_b = *r;
+}
+
 FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                        const std::string& experiment_file) {
-  s.allow_only({"name", "shape", "shape_a", "shape_b", "vertices", "vertices_a", "vertices_b",
-                "scale", "rotate", "weight", "placement", "contact", "angle", "aspect", "scale_b",
-                "offset", "path"});
+  s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
+                "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
+                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b"});
   FamilySpec f;
   const bool has_shape = s.find("shape") != nullptr;
   const auto pair_shape = has_shape && s.find("shape")->is_string()
@@ -547,6 +594,7 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   if (const auto ratio = s.positive_interval("scale_b")) f.scale_ratio = *ratio;
   if (const auto offset = s.positive_interval("offset")) f.offset = *offset;
   if (const auto weight = s.positive("weight")) f.weight = *weight;
+  read_radii(s, is_contact || is_file, f);
 
   f.placement = placement;
   if (const toml::table* sub = s.subtable("placement"))
@@ -816,6 +864,12 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     const Section s = top.child(t, "algorithm[" + std::to_string(i) + "]");
     AlgorithmSpec spec = read_algorithm(s);
     spec.options.oracle.depth = config.depth;
+    if (config.has_swept_shapes() && !find_algorithm(spec.name)->run_swept)
+      s.fail(*s.find("name"), "name",
+             "'" + spec.name +
+                 "' answers for polytopes only, and this experiment has sphere-swept shapes "
+                 "(a family with a radius, or shape sphere or capsule); valid here: " +
+                 swept_algorithm_names());
     for (std::size_t j = 0; j < config.algorithms.size(); ++j)
       if (config.algorithms[j].label == spec.label)
         s.fail(*s.find(s.find("label") ? "label" : "name"), s.find("label") ? "label" : "name",
@@ -845,6 +899,14 @@ ExperimentConfig load_experiment(const std::filesystem::path& path) {
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw ConfigError(path.string(), 0, "", "cannot read");
   return parse_experiment(text, path.string());
+}
+
+bool ExperimentConfig::has_swept_shapes() const {
+  auto swept_pair = [](const StoredPair& p) { return p.radius_a > 0 || p.radius_b > 0; };
+  return std::any_of(families.begin(), families.end(), [&](const FamilySpec& f) {
+    return f.radius_a.hi > 0 || f.radius_b.hi > 0 ||
+           std::any_of(f.stored.begin(), f.stored.end(), swept_pair);
+  });
 }
 
 std::vector<std::string> ExperimentConfig::result_family_names() const {

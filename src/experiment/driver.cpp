@@ -53,12 +53,12 @@ ExactRecord exact_record(const exact::OracleAnswer& a, double band) {
 
 /// Median wall time of `repetitions` runs of one query, in ns.
 double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
-                  const AlgorithmOptions& options, int repetitions) {
+                  const SweptRadii& radii, const AlgorithmOptions& options, int repetitions) {
   std::vector<double> ns;
   ns.reserve(repetitions);
   for (int r = 0; r < repetitions; ++r) {
     const auto start = Clock::now();
-    const Outcome o = algorithm.run(a, b, options);
+    const Outcome o = run_algorithm(algorithm, a, b, radii, options);
     const auto stop = Clock::now();
     if (o.iterations < 0) break;  // keeps the call from being optimised away
     ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
@@ -170,6 +170,7 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   CaseResult result;
   result.record = generated.record;
   const Polytope a(generated.a), b(generated.b);
+  const SweptRadii radii{generated.record.radius_a, generated.record.radius_b};
   const double size = generated.record.size;
   const double band = config.touching_band * size;
 
@@ -180,17 +181,18 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     const bool depth_algorithm =
         std::any_of(config.algorithms.begin(), config.algorithms.end(),
                     [](const AlgorithmSpec& s) { return find_algorithm(s.name)->depth; });
-    answer = exact::solve(a.vertices(), b.vertices(), {.depth = config.depth || depth_algorithm});
+    answer = exact::solve_swept(a.vertices(), b.vertices(), radii.a, radii.b,
+                                {.depth = config.depth || depth_algorithm});
     result.exact = exact_record(*answer, band);
   }
   std::vector<Outcome> outcomes;
   for (const AlgorithmSpec& spec : config.algorithms) {
     const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
-    outcomes.push_back(algorithm.run(a, b, spec.options));
+    outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options));
     result.algorithms.push_back(algorithm_record(outcomes.back(), result.exact, size));
     if (config.timing)
       result.algorithms.back().time_ns =
-          time_query(algorithm, a, b, spec.options, config.repetitions);
+          time_query(algorithm, a, b, radii, spec.options, config.repetitions);
   }
   // A boolean that disagrees with an intersecting exact answer may be inside the touching
   // band; only the exact depth can tell, so compute it now if it was not asked for. (A query
@@ -202,7 +204,7 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
           return !r.intersect && r.termination != Termination::step_limit;
         });
     if (disagreement) {
-      answer = exact::solve(a.vertices(), b.vertices(), {.depth = true});
+      answer = exact::solve_swept(a.vertices(), b.vertices(), radii.a, radii.b, {.depth = true});
       result.exact = exact_record(*answer, band);
       for (std::size_t i = 0; i < outcomes.size(); ++i) {
         const double time_ns = result.algorithms[i].time_ns;
@@ -220,9 +222,9 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       const AlgorithmInfo& algorithm = *find_algorithm(config.algorithms[i].name);
       const bool wanted =
           config.trace == "all" || result.algorithms[i].failure != FailureClass::none;
-      if (!wanted || !algorithm.run_traced) continue;
+      if (!wanted || !can_trace(algorithm, radii)) continue;
       TraceRecorder recorder;
-      algorithm.run_traced(a, b, config.algorithms[i].options, recorder);
+      run_algorithm_traced(algorithm, a, b, radii, config.algorithms[i].options, recorder);
       result.traces[i] = std::move(recorder.iterations);
     }
   }

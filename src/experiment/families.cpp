@@ -362,7 +362,11 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, do
       break;
     }
     case ShapeKind::single_point:
+    case ShapeKind::sphere:
       cloud.emplace_back(0.0, 0.0, 0.0);
+      break;
+    case ShapeKind::capsule:
+      cloud = {Vec3(-1, 0, 0), Vec3(1, 0, 0)};
       break;
     case ShapeKind::sliver:
       cloud = points_of(shapes::box(Vec3(1, 1, 1 / aspect)));
@@ -403,7 +407,14 @@ double draw_gap(gsl_rng* r, Placement mode, const PlacementSpec& placement) {
   return 0;
 }
 
+/// A sphere-swept shape's radius in shape units (before scaling): 0 without a radius (no draw,
+/// so families without radii keep their random streams), else log-uniform in the range.
+double draw_radius(gsl_rng* r, const Interval& range) {
+  return range.hi == 0 ? 0.0 : log_uniform(r, range);
+}
+
 /// Two generated shapes, B placed along a random axis by the drawn gap, or at random.
+/// Sphere-swept shapes are placed by the extents of the swept shapes (cores grown by radii).
 void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
   CaseRecord& rec = out.record;
   const int n_a = log_uniform_count(r, family.vertices_a);
@@ -411,10 +422,12 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
   const double ratio = log_uniform(r, family.scale_ratio);
   out.a = make_shape(r, family.shape_a, n_a, family, family.scale);
   out.b = make_shape(r, family.shape_b, n_b, family, family.scale * ratio);
+  rec.radius_a = draw_radius(r, family.radius_a) * family.scale;
+  rec.radius_b = draw_radius(r, family.radius_b) * family.scale * ratio;
 
   // Both vertex means are at the origin now; B moves along a random axis u.
   const PlacementSpec& placement = family.placement;
-  const double size = pair_size(out.a, out.b);
+  const double size = pair_size(out.a, out.b, rec.radius_a, rec.radius_b);
   Vec3 translation = Vec3::Zero();
   const Placement mode = draw_placement(r, placement);
   if (mode == Placement::random) {
@@ -425,7 +438,8 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
     const Vec3 u = unit_vector(r);
     // gap > 0: B's extent along u starts gap·size after A's; gap < 0: they overlap by −gap·size.
     const double gap = draw_gap(r, mode, placement);
-    const double shift = max_projection(out.a, u) + gap * size - min_projection(out.b, u);
+    const double shift = (max_projection(out.a, u) + rec.radius_a) + gap * size -
+                         (min_projection(out.b, u) - rec.radius_b);
     translation = shift * u;
     rec.intended_gap = gap;
     out.direction = u;
@@ -476,6 +490,8 @@ void take_stored_pair(const FamilySpec& family, std::uint64_t case_id, Generated
   const StoredPair& pair = family.stored[case_id % family.stored.size()];
   out.a = pair.a;
   out.b = pair.b;
+  out.record.radius_a = pair.radius_a;
+  out.record.radius_b = pair.radius_b;
   out.record.placement = Placement::as_given;
 }
 
@@ -497,6 +513,8 @@ void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
       for (Vec3& p : *cloud)
         p *= value;
     out.record.scale *= value;
+    out.record.radius_a *= value;
+    out.record.radius_b *= value;
   }
 }
 
@@ -545,7 +563,7 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
 
   rec.vertices_a = static_cast<std::int32_t>(out.a.size());
   rec.vertices_b = static_cast<std::int32_t>(out.b.size());
-  rec.size = pair_size(out.a, out.b);
+  rec.size = pair_size(out.a, out.b, rec.radius_a, rec.radius_b);
   for (const auto* cloud : {&out.a, &out.b})
     if (const std::string problem = describe_invalid_cloud(*cloud); !problem.empty())
       throw std::runtime_error("generate_case " + std::to_string(case_id) + ": " + problem);

@@ -68,6 +68,10 @@ std::string_view to_string(ShapeKind s) {
       return "from_file";
     case ShapeKind::mesh:
       return "mesh";
+    case ShapeKind::sphere:
+      return "sphere";
+    case ShapeKind::capsule:
+      return "capsule";
   }
   return "unknown";
 }

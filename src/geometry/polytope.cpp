@@ -322,14 +322,16 @@ Polytope Polytope::scaled(double factor) const {
   return out;
 }
 
-static double cloud_diagonal(std::span<const Vec3> cloud) {
+/// Diagonal of the cloud's bounding box grown by `radius` on every side.
+static double cloud_diagonal(std::span<const Vec3> cloud, double radius = 0) {
   if (cloud.empty()) return 0;
   Vec3 lo = cloud[0], hi = cloud[0];
   for (const Vec3& v : cloud) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
-  return (hi - lo).norm();
+  if (radius == 0) return (hi - lo).norm();
+  return (hi - lo + Vec3::Constant(2 * radius)).norm();
 }
 
 double Polytope::bounding_box_diagonal() const {
@@ -338,6 +340,11 @@ double Polytope::bounding_box_diagonal() const {
 
 double pair_size(std::span<const Vec3> a, std::span<const Vec3> b) {
   return std::max(cloud_diagonal(a), cloud_diagonal(b));
+}
+
+double pair_size(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
+                 double radius_b) {
+  return std::max(cloud_diagonal(a, radius_a), cloud_diagonal(b, radius_b));
 }
 
 }  // namespace gjklab

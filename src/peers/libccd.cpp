@@ -40,6 +40,8 @@
 
 #include "gjklab/peers/libccd.hpp"
 
+#include "gjklab/geometry/support.hpp"
+
 namespace gjklab::peers {
 namespace {
 
@@ -56,6 +58,8 @@ enum Escape : int {
 struct Query {
   const Polytope* a = nullptr;
   const Polytope* b = nullptr;
+  /// Radii of sphere-swept shapes (0: the polytopes themselves).
+  SweptRadii radii;
   /// Minkowski support evaluations allowed; a request for one more leaves libccd by longjmp.
   long support_budget = 0;
   /// Minkowski support evaluations completed (pairs of shape support calls).
@@ -95,9 +99,13 @@ bool all_finite(const double (&v)[3]) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
-/// Writes shape's support point in direction d to out; false if the point is not finite.
-bool evaluate_support(const Polytope& shape, const double (&d)[3], double (&out)[3]) noexcept {
-  const Vec3 s = shape.support(Vec3(d[0], d[1], d[2]));
+/// Writes the support point in direction d of shape swept by a ball of the given radius to out;
+/// false if the point is not finite.
+bool evaluate_support(const Polytope& shape, double radius, const double (&d)[3],
+                      double (&out)[3]) noexcept {
+  const Vec3 dir(d[0], d[1], d[2]);
+  const Vec3 s =
+      radius == 0 ? shape.support(dir) : SphereSwept<Polytope>(shape, radius).support(dir);
   out[0] = s.x();
   out[1] = s.y();
   out[2] = s.z();
@@ -143,7 +151,7 @@ static void gjklab_ccd_support_a(const void* obj, const ccd_vec3_t* dir, ccd_vec
     return serve_origin(q, out);
   }
   std::copy(dir->v, dir->v + 3, q.direction);
-  if (!evaluate_support(*q.a, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
+  if (!evaluate_support(*q.a, q.radii.a, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
   std::copy(out->v, out->v + 3, q.support_a);
 }
 
@@ -156,7 +164,7 @@ static void gjklab_ccd_support_b(const void* obj, const ccd_vec3_t* dir, ccd_vec
     return;
   }
   if (!all_finite(dir->v)) std::longjmp(q.escape, kNonFinite);
-  if (!evaluate_support(*q.b, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
+  if (!evaluate_support(*q.b, q.radii.b, dir->v, out->v)) std::longjmp(q.escape, kNonFinite);
   ++q.evaluations;
   // Replays libccd's GJK separation test on the point it is about to form, with the same
   // operations in the same order: v = v1 − v2 componentwise, then (v·d) < 0.
@@ -262,11 +270,12 @@ BooleanResult run_query(LibccdEntry entry, const Polytope& a, const Polytope& b,
 }  // namespace
 
 BooleanResult libccd_gjk_intersect(const Polytope& a, const Polytope& b,
-                                   const LibccdOptions& options) {
+                                   const LibccdOptions& options, const SweptRadii& radii) {
   validate(options);
   const ccd_t ccd = make_ccd(options);  // libccd bounds its own loop by max_iterations
   const long max_evaluations = options.max_iterations + 1L;
   Query q;
+  q.radii = radii;
   Escape escape = kNoEscape;
   // libccd 2.1 never asks for more than max_iterations + 1 support points; the budget is only a
   // safeguard against a libccd whose loop bound means something else.
@@ -288,7 +297,7 @@ BooleanResult libccd_gjk_intersect(const Polytope& a, const Polytope& b,
 }
 
 BooleanResult libccd_mpr_intersect(const Polytope& a, const Polytope& b,
-                                   const LibccdOptions& options) {
+                                   const LibccdOptions& options, const SweptRadii& radii) {
   validate(options);
   const ccd_t ccd = make_ccd(options);  // max_iterations is recorded but unused by libccd's MPR
   // Portal discovery evaluates two support points before its loop; every further evaluation is
@@ -296,6 +305,7 @@ BooleanResult libccd_mpr_intersect(const Polytope& a, const Polytope& b,
   // both unbounded loops; a request beyond that leaves libccd by longjmp (step_limit).
   const long max_evaluations = options.max_iterations + 2L;
   Query q;
+  q.radii = radii;
   Escape escape = kNoEscape;
   BooleanResult result = run_query(ccdMPRIntersect, a, b, ccd, max_evaluations, escape, q);
   result.iterations = std::max(result.support_calls - 2, 0);
@@ -341,11 +351,12 @@ long libccd_gjk_penetration_budget(const LibccdOptions& options) {
 }
 
 LibccdPenetration libccd_gjk_penetration(const Polytope& a, const Polytope& b,
-                                         const LibccdOptions& options) {
+                                         const LibccdOptions& options, const SweptRadii& radii) {
   validate(options);
   const ccd_t ccd = make_ccd(options);
   const long gjk_evaluations = options.max_iterations + 1L;
   Query q;
+  q.radii = radii;
   q.a = &a;
   q.b = &b;
   q.soft_budget = true;
@@ -377,10 +388,11 @@ LibccdPenetration libccd_gjk_penetration(const Polytope& a, const Polytope& b,
 }
 
 LibccdPenetration libccd_mpr_penetration(const Polytope& a, const Polytope& b,
-                                         const LibccdOptions& options) {
+                                         const LibccdOptions& options, const SweptRadii& radii) {
   validate(options);
   const ccd_t ccd = make_ccd(options);
   Query q;
+  q.radii = radii;
   q.a = &a;
   q.b = &b;
   q.support_budget = options.max_iterations + 2L + options.max_depth_iterations;

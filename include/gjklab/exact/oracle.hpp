@@ -50,6 +50,9 @@ struct OracleAnswer {
   std::optional<Rational> depth_squared;
   /// √depth_squared rounded to the nearest double, when depth_squared is present.
   std::optional<double> depth;
+  /// Answered by solve_swept for non-zero radii: intersect, distance and depth are the swept
+  /// shapes', while distance_squared, depth_squared and the hull counts stay the cores'.
+  bool swept = false;
 };
 
 /// Solves the pair exactly. Throws std::invalid_argument (gjklab::InvalidGeometry) for an
@@ -57,6 +60,20 @@ struct OracleAnswer {
 /// "cloud B: non-finite coordinate in point 3".
 OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b,
                    const OracleOptions& options = {});
+
+/// Solves a pair of sphere-swept shapes: the hull of cloud a swept by a ball of radius_a, and
+/// likewise b (length units, each finite and >= 0; a single point and a radius make a sphere,
+/// two points a capsule, any cloud a rounded polytope). With R = radius_a + radius_b and q the
+/// cores' exact squared distance:
+///   intersect   q ≤ R², decided exactly;
+///   distance    √q − R when positive, else 0, correctly rounded (evaluated with MPFR);
+///   depth       with OracleOptions::depth and intersect: R − √q when the cores are apart, else
+///               √p + R with p the cores' exact squared depth, correctly rounded.
+/// distance_squared, depth_squared and the hull counts are the cores' (exact rationals; the
+/// swept answers are irrational in general). With both radii 0 this is solve(a, b, options).
+/// Throws std::invalid_argument as solve does, and for a negative or non-finite radius.
+OracleAnswer solve_swept(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
+                         double radius_b, const OracleOptions& options = {});
 
 /// Number of vertices of the convex hull of one cloud (see OracleAnswer::hull_vertices_a),
 /// decided with exact predicates. Throws std::invalid_argument for an empty cloud or a

@@ -15,6 +15,7 @@
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/swept.hpp"
 #include "gjklab/gjk/trace.hpp"
 #include "gjklab/peers/libccd.hpp"
 #include "gjklab/peers/sat.hpp"
@@ -78,7 +79,32 @@ struct AlgorithmInfo {
   bool peer = false;
   /// Reports a penetration depth for intersecting pairs (Outcome::depth).
   bool depth = false;
+  /// The query on sphere-swept shapes (each polytope swept by a ball of its radius); nullptr
+  /// when the algorithm handles polytopes only (SAT's axes, and the FCL and Bullet adapters,
+  /// which build plain convex hulls). GJK distance queries run on the cores and shift the
+  /// answer by the radii (see gjk/swept.hpp); the boolean GJK and libccd walk the swept
+  /// support map; the oracle answers with exact::solve_swept.
+  Outcome (*run_swept)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                       const AlgorithmOptions& options) = nullptr;
+  /// The same with a per-iteration trace (of the cores' query for distance algorithms).
+  Outcome (*run_swept_traced)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                              const AlgorithmOptions& options, TraceRecorder& trace) = nullptr;
 };
+
+/// Whether the algorithm can answer for a pair with these radii (any algorithm, for zero radii).
+bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii);
+/// Whether the algorithm can trace a pair with these radii.
+bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii);
+
+/// Runs the algorithm on the polytopes (zero radii) or on the shapes they make swept by the
+/// radii. Throws std::invalid_argument naming the algorithm when !handles(algorithm, radii).
+Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                      const SweptRadii& radii, const AlgorithmOptions& options);
+/// The same with a per-iteration trace. Throws std::invalid_argument naming the algorithm when
+/// !can_trace(algorithm, radii).
+Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                             const SweptRadii& radii, const AlgorithmOptions& options,
+                             TraceRecorder& trace);
 
 /// Every registered algorithm, in a fixed order (the default order of outputs).
 std::span<const AlgorithmInfo> algorithms();

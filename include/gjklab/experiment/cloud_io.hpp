@@ -35,6 +35,10 @@ class InputError : public std::runtime_error {
 struct PointCase {
   std::string id;
   std::vector<Vec3> a, b;
+  /// Sphere-swept shapes: optional "radius_a" and "radius_b" of a cases line (length units,
+  /// finite and >= 0; 0 when absent).
+  double radius_a = 0;
+  double radius_b = 0;
 };
 
 /// A line of a cases file that could not be read, with the id if one was found.

@@ -53,6 +53,7 @@ enum class Rotation : std::uint8_t {
 struct StoredPair {
   std::string id;
   std::vector<Vec3> a, b;
+  double radius_a = 0, radius_b = 0;  ///< sphere-swept shapes (length units), as stored
 };
 
 /// One family of cases: the generator of both shapes and how they are placed.
@@ -77,11 +78,16 @@ struct FamilySpec {
   /// all (touching). contact_any draws one of the six exact types per case.
   ContactType contact = ContactType::none;
   bool contact_any = false;
-  Interval angle{1e-6, 1e-6};      ///< parallel-edges contact: angle in radians (log-uniform)
-  Interval aspect{10, 10};         ///< sliver: aspect ratio (log-uniform)
-  Interval scale_ratio{1, 1};      ///< B's scale relative to A's (log-uniform): scale disparity
-  Interval offset{0, 0};           ///< both shapes moved by a random vector of this length
-                                   ///< (length units, log-uniform; 0: not moved)
+  Interval angle{1e-6, 1e-6};  ///< parallel-edges contact: angle in radians (log-uniform)
+  Interval aspect{10, 10};     ///< sliver: aspect ratio (log-uniform)
+  Interval scale_ratio{1, 1};  ///< B's scale relative to A's (log-uniform): scale disparity
+  Interval offset{0, 0};       ///< both shapes moved by a random vector of this length
+                               ///< (length units, log-uniform; 0: not moved)
+  /// Sphere-swept shapes: each shape's hull is swept by a ball of a radius drawn log-uniformly
+  /// from its range (shape units: scaled with the shape; {0, 0}: no radius, a plain polytope).
+  /// shape = "sphere" and "capsule" default to radius 1 and 0.5.
+  Interval radius_a{0, 0};
+  Interval radius_b{0, 0};
   std::string path;                ///< `file`: the cases file; `mesh`: a mesh file or folder
   std::vector<StoredPair> stored;  ///< its pairs; case i uses pair i mod size
   /// The `mesh` family's meshes (vertices of each file under `path`, in name order); each
@@ -130,6 +136,8 @@ struct ExperimentConfig {
   std::uint64_t total_cases() const {
     return cases * (geometry_sweep ? geometry_sweep->values.size() : 1);
   }
+  /// Whether any family has sphere-swept shapes (a radius).
+  bool has_swept_shapes() const;
   /// Names of the result families (index = CaseRecord::family): the families, or each family
   /// once per geometry-sweep value.
   std::vector<std::string> result_family_names() const;

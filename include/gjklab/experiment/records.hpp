@@ -64,6 +64,8 @@ enum class ShapeKind : std::uint8_t {
   pyramid,           ///< square pyramid with its apex at the origin (contact families)
   from_file,         ///< a cloud read from a cases file
   mesh,              ///< the vertices of a mesh file (OFF, OBJ, PLY, STL)
+  sphere,            ///< sphere-swept point: the origin, swept by the case's radius
+  capsule,           ///< sphere-swept segment: (±1, 0, 0), swept by the case's radius
 };
 
 /// Contact configurations of the `contact` families, built from exactly representable
@@ -91,6 +93,10 @@ struct CaseRecord {
   double scale = 1;         ///< the family's scale parameter
   double size = 0;          ///< larger bounding-box diagonal of the two clouds
   double intended_gap = 0;  ///< drawn gap (> 0) or overlap (< 0), relative to size
+  /// Sphere-swept shapes: each cloud's hull is swept by a ball of this radius (length units,
+  /// world frame); 0 for plain polytopes.
+  double radius_a = 0;
+  double radius_b = 0;
 };
 
 /// The exact oracle's answer for a case.

@@ -126,5 +126,9 @@ std::string describe_invalid_cloud(std::span<const Vec3> cloud);
 
 /// The larger bounding-box diagonal of two clouds: the size that relative errors refer to.
 double pair_size(std::span<const Vec3> a, std::span<const Vec3> b);
+/// The same for the clouds swept by balls of the given radii (length units): each bounding box
+/// grows by its radius on every side. Equal to pair_size(a, b) for zero radii.
+double pair_size(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
+                 double radius_b);
 
 }  // namespace gjklab

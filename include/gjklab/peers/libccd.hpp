@@ -50,6 +50,11 @@
 // four such answers to non-finite directions does the query leave by longjmp, leaking that
 // polytope (a few hundred bytes).
 //
+// Sphere-swept shapes. With non-zero radii (SweptRadii) each shape's support point is its
+// polytope's plus radius·d/‖d‖ (the support map of the polytope swept by a ball), and libccd
+// runs on those shapes as given; the centres MPR starts from are the vertex means, which lie
+// inside the swept shapes too. The depth is then that of the swept shapes.
+//
 // The functions are re-entrant: every query keeps its state in its own stack frame.
 #pragma once
 
@@ -57,6 +62,7 @@
 
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/swept.hpp"
 #include "gjklab/gjk/termination.hpp"
 
 namespace gjklab::peers {
@@ -116,24 +122,26 @@ struct LibccdPenetration {
 /// libccd's ccdGJKIntersect on the two polytopes (both in world coordinates).
 /// Throws std::invalid_argument if the options are invalid.
 BooleanResult libccd_gjk_intersect(const Polytope& a, const Polytope& b,
-                                   const LibccdOptions& options = {});
+                                   const LibccdOptions& options = {}, const SweptRadii& radii = {});
 /// libccd's ccdMPRIntersect on the two polytopes (both in world coordinates); the interior
 /// point MPR starts from is the difference of the vertex means.
 /// Throws std::invalid_argument if the options are invalid.
 BooleanResult libccd_mpr_intersect(const Polytope& a, const Polytope& b,
-                                   const LibccdOptions& options = {});
+                                   const LibccdOptions& options = {}, const SweptRadii& radii = {});
 
 /// libccd's ccdGJKPenetration (GJK, then EPA) on the two polytopes, with a bounded EPA.
 /// Throws std::invalid_argument if the options are invalid, std::bad_alloc if libccd's
 /// polytope allocation fails.
 LibccdPenetration libccd_gjk_penetration(const Polytope& a, const Polytope& b,
-                                         const LibccdOptions& options = {});
+                                         const LibccdOptions& options = {},
+                                         const SweptRadii& radii = {});
 /// The total support-evaluation budget libccd_gjk_penetration enforces with these options.
 long libccd_gjk_penetration_budget(const LibccdOptions& options);
 /// libccd's ccdMPRPenetration on the two polytopes (interior point: difference of the vertex
 /// means), bounded by the adapter. Throws std::invalid_argument if the options are invalid.
 LibccdPenetration libccd_mpr_penetration(const Polytope& a, const Polytope& b,
-                                         const LibccdOptions& options = {});
+                                         const LibccdOptions& options = {},
+                                         const SweptRadii& radii = {});
 
 /// Version of libccd the adapter was built with (for provenance).
 std::string libccd_version();
