@@ -90,6 +90,8 @@ CaseResult make_result(std::uint64_t i, bool oracle) {
   c.scale = 0.5 + static_cast<double>(i);
   c.size = std::sqrt(3.0) * static_cast<double>(i + 1);
   c.intended_gap = i % 4 == 0 ? kNaN : (i % 2 == 0 ? 1e-7 : -0.25) * static_cast<double>(i);
+  c.radius_a = i % 3 == 0 ? 0.0 : 0.125 * static_cast<double>(i);
+  c.radius_b = 1.0 / static_cast<double>(i + 3);
   if (oracle) {
     ExactRecord& e = r.exact.emplace();
     e.intersect = i % 2 == 1;
@@ -166,6 +168,8 @@ void check_same_result(const CaseResult& x, const CaseResult& y) {
   CHECK(same(x.record.scale, y.record.scale));
   CHECK(same(x.record.size, y.record.size));
   CHECK(same(x.record.intended_gap, y.record.intended_gap));
+  CHECK(same(x.record.radius_a, y.record.radius_a));
+  CHECK(same(x.record.radius_b, y.record.radius_b));
 
   REQUIRE(x.exact.has_value() == y.exact.has_value());
   if (x.exact) {
