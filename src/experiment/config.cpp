@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <system_error>
 
@@ -163,7 +164,12 @@ class Section {
   }
   [[noreturn]] void fail(const toml::node& node, std::string_view key,
                          const std::string& problem) const {
-    fail(line_of(node), key, problem);
+    fail_at(node.source(), key, problem);
+  }
+  /// A value (or key) inherited from a base experiment names the base file.
+  [[noreturn]] void fail_at(const toml::source_region& where, std::string_view key,
+                            const std::string& problem) const {
+    throw ConfigError(where.path ? *where.path : file_, line_of(where), key_path(key), problem);
   }
   [[noreturn]] void missing(std::string_view key, const std::string& what = {}) const {
     fail(header_line_, key, what.empty() ? "missing (required)" : what);
@@ -182,7 +188,7 @@ class Section {
     if (!first) return;
     std::string problem = explain(first->str());
     if (problem.empty()) problem = "unknown key; valid: " + join(allowed);
-    fail(line_of(first->source()), first->str(), problem);
+    fail_at(first->source(), first->str(), problem);
   }
   void allow_only(const std::vector<std::string_view>& allowed) const {
     allow_only(allowed, [](std::string_view) { return std::string(); });
@@ -622,6 +628,76 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   return f;
 }
 
+toml::table parse_toml(const std::string& text, const std::string& source) {
+  try {
+    return toml::parse(std::string_view(text), std::string_view(source));
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(source, line_of(e.source()), "",
+                      "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
+/// `into` with every key of `over` put in: tables merge key by key, anything else (values,
+/// arrays, arrays of tables such as [[family]] and [[algorithm]]) is replaced whole.
+void merge_over(toml::table& into, const toml::table& over) {
+  for (const auto& [key, node] : over) {
+    toml::node* existing = into.get(key);
+    if (existing && existing->is_table() && node.is_table()) {
+      merge_over(*existing->as_table(), *node.as_table());
+    } else {
+      into.insert_or_assign(key, node);
+    }
+  }
+}
+
+/// `exclude_families = ["NAME", ...]`: drops the named families (typically a base experiment's
+/// that do not suit the derived one); every name must exist and at least one family must stay.
+void exclude_families(const Section& top, std::vector<FamilySpec>& families) {
+  const toml::node* node = top.find("exclude_families");
+  if (!node) return;
+  const toml::array* names = node->as_array();
+  if (!names) top.fail(*node, "exclude_families", "expected an array of family names");
+  for (const toml::node& entry : *names) {
+    if (!entry.is_string()) top.fail(entry, "exclude_families", "expected family names (strings)");
+    const std::string& name = entry.as_string()->get();
+    const auto found = std::find_if(families.begin(), families.end(),
+                                    [&](const FamilySpec& f) { return f.name == name; });
+    if (found == families.end()) {
+      std::vector<std::string_view> known;
+      for (const FamilySpec& f : families)
+        known.push_back(f.name);
+      top.fail(entry, "exclude_families", "no family '" + name + "'; families: " + join(known));
+    }
+    families.erase(found);
+  }
+  if (families.empty()) top.fail(*node, "exclude_families", "excludes every family");
+}
+
+/// Bases may themselves have a base, up to this depth (which also stops a cycle).
+constexpr int kMaxBaseDepth = 8;
+
+/// The experiment `derived` (read from `source`) over its base file: `base = "FILE"`, relative
+/// to `source`'s folder. Keys of `derived` win; tables merge (see merge_over).
+toml::table with_base(toml::table derived, const std::string& source, int depth) {
+  const toml::node& node = *derived.get("base");
+  const Section s(source, derived, "", 1);
+  if (!node.is_string()) s.fail(node, "base", "expected a file name (a string)");
+  if (depth >= kMaxBaseDepth)
+    s.fail(node, "base",
+           "bases nest deeper than " + std::to_string(kMaxBaseDepth) + " files (a cycle?)");
+  std::filesystem::path path(node.as_string()->get());
+  if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path))
+    s.fail(node, "base", "cannot read the base experiment " + path.string());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  toml::table base = parse_toml(text, path.string());
+  if (base.contains("base")) base = with_base(std::move(base), path.string(), depth + 1);
+  derived.erase("base");
+  merge_over(base, derived);
+  return base;
+}
+
 /// The option keys of each algorithm beyond `name` and `max_iterations`.
 std::vector<std::string_view> own_option_keys(std::string_view algorithm) {
   std::vector<std::string_view> keys = option_keys(algorithm);
@@ -776,21 +852,24 @@ bool valid_experiment_name(std::string_view name) {
 }  // namespace
 
 ExperimentConfig parse_experiment(const std::string& text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(std::string_view(text), std::string_view(source));
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(source, line_of(e.source()), "",
-                      "TOML syntax error: " + std::string(e.description()));
+  toml::table root = parse_toml(text, source);
+  // With a base, the archive keeps the merged experiment, which reads back without the base.
+  std::string effective_text = text;
+  if (root.contains("base")) {
+    root = with_base(std::move(root), source, 0);
+    std::ostringstream merged;
+    merged << "# " << source << " merged with its base experiment\n"
+           << toml::toml_formatter(root) << "\n";
+    effective_text = merged.str();
   }
 
   const Section top(source, root, "", 1);
   top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle", "timing",
-                  "placement", "family", "algorithm", "sweep", "trace"});
+                  "placement", "family", "exclude_families", "algorithm", "sweep", "trace"});
 
   ExperimentConfig config;
   config.source = source;
-  config.text = text;
+  config.text = effective_text;
 
   const auto name = top.string("name");
   if (!name) top.missing("name");
@@ -854,6 +933,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
                    "]; give each family a distinct name");
     config.families.push_back(std::move(family));
   }
+  exclude_families(top, config.families);
 
   const toml::array* algorithms = top.table_array("algorithm");
   if (!algorithms) top.missing("algorithm", "missing: at least one [[algorithm]] is required");
