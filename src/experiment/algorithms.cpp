@@ -64,45 +64,56 @@ Outcome run_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOption
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean));
 }
 
-Outcome run_gjk_johnson(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(gjk_distance(a, b, o.gjk_distance));
-}
-
 Outcome trace_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
                        TraceRecorder& trace) {
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean, trace));
 }
 
-Outcome trace_gjk_johnson(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                          TraceRecorder& trace) {
-  return from_distance(gjk_distance(a, b, o.gjk_distance, trace));
-}
+// ---- the GJK distance variants ---------------------------------------------------------
+//
+// Each variant is one core query, untraced and traced; the registry's plain and sphere-swept
+// entries are made from those (swept shapes: the query runs on the cores and its answer is
+// shifted by the radii, see gjk/swept.hpp).
 
 template <class Sub>
-Outcome trace_gjk_with(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
+DistanceResult distance_with(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return gjk_distance_with<Sub>(a, b, o.gjk_distance);
+}
+template <class Sub>
+DistanceResult traced_distance_with(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
+                                    TraceRecorder& trace) {
+  return gjk_distance_with<Sub>(a, b, o.gjk_distance, trace);
+}
+DistanceResult nesterov_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return gjk_nesterov(a, b, o.gjk_nesterov);
+}
+DistanceResult traced_nesterov_distance(const Polytope& a, const Polytope& b,
+                                        const AlgorithmOptions& o, TraceRecorder& trace) {
+  return gjk_nesterov(a, b, o.gjk_nesterov, trace);
+}
+
+using DistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&, const AlgorithmOptions&);
+using TracedDistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&,
+                                               const AlgorithmOptions&, TraceRecorder&);
+
+template <DistanceQuery Query>
+Outcome run_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return from_distance(Query(a, b, o));
+}
+template <TracedDistanceQuery Query>
+Outcome trace_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
                        TraceRecorder& trace) {
-  return from_distance(gjk_distance_with<Sub>(a, b, o.gjk_distance, trace));
+  return from_distance(Query(a, b, o, trace));
 }
-
-Outcome trace_gjk_nesterov(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                           TraceRecorder& trace) {
-  return from_distance(gjk_nesterov(a, b, o.gjk_nesterov, trace));
+template <DistanceQuery Query>
+Outcome run_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                           const AlgorithmOptions& o) {
+  return from_distance(swept_distance(Query(a, b, o), r));
 }
-
-Outcome run_gjk_johnson_backup(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(gjk_distance_with<JohnsonBackupSubAlgorithm>(a, b, o.gjk_distance));
-}
-
-Outcome run_gjk_sv(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(gjk_distance_with<SignedVolumesSubAlgorithm>(a, b, o.gjk_distance));
-}
-
-Outcome run_gjk_voronoi(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(gjk_distance_with<VoronoiSubAlgorithm>(a, b, o.gjk_distance));
-}
-
-Outcome run_gjk_nesterov(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(gjk_nesterov(a, b, o.gjk_nesterov));
+template <TracedDistanceQuery Query>
+Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                             const AlgorithmOptions& o, TraceRecorder& trace) {
+  return from_distance(swept_distance(Query(a, b, o, trace), r));
 }
 
 Outcome run_libccd_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
@@ -281,39 +292,6 @@ Outcome swept_trace_gjk_bool(const Polytope& a, const Polytope& b, const SweptRa
       gjk_intersect(SweptPolytope(a, r.a), SweptPolytope(b, r.b), o.gjk_boolean, trace));
 }
 
-/// A GJK distance query on the cores, shifted by the radii.
-template <class Sub>
-Outcome swept_gjk_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                       const AlgorithmOptions& o) {
-  return from_distance(swept_distance(gjk_distance_with<Sub>(a, b, o.gjk_distance), r));
-}
-
-template <class Sub>
-Outcome swept_trace_gjk_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                             const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_distance(swept_distance(gjk_distance_with<Sub>(a, b, o.gjk_distance, trace), r));
-}
-
-Outcome swept_gjk_johnson(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                          const AlgorithmOptions& o) {
-  return from_distance(swept_distance(gjk_distance(a, b, o.gjk_distance), r));
-}
-
-Outcome swept_trace_gjk_johnson(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                                const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_distance(swept_distance(gjk_distance(a, b, o.gjk_distance, trace), r));
-}
-
-Outcome swept_gjk_nesterov(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                           const AlgorithmOptions& o) {
-  return from_distance(swept_distance(gjk_nesterov(a, b, o.gjk_nesterov), r));
-}
-
-Outcome swept_trace_gjk_nesterov(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                                 const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_distance(swept_distance(gjk_nesterov(a, b, o.gjk_nesterov, trace), r));
-}
-
 /// EPA on the cores, shifted by the radii (depth grows by r_A + r_B; cores apart by less than
 /// that overlap by the difference).
 Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
@@ -362,8 +340,11 @@ constexpr std::array kAlgorithms = {
                   "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
                   trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool},
     AlgorithmInfo{"gjk-johnson", AnswerKind::distance,
-                  "GJK distance with Johnson's distance sub-algorithm", run_gjk_johnson,
-                  trace_gjk_johnson, false, false, swept_gjk_johnson, swept_trace_gjk_johnson},
+                  "GJK distance with Johnson's distance sub-algorithm",
+                  run_distance<distance_with<JohnsonSubAlgorithm>>,
+                  trace_distance<traced_distance_with<JohnsonSubAlgorithm>>, false, false,
+                  run_swept_distance<distance_with<JohnsonSubAlgorithm>>,
+                  trace_swept_distance<traced_distance_with<JohnsonSubAlgorithm>>},
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk,
                   nullptr, true, false, swept_libccd_gjk},
     AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr,
@@ -371,22 +352,27 @@ constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-johnson-backup", AnswerKind::distance,
                   "GJK distance with Johnson's sub-algorithm and van den Bergen's backup "
                   "procedure",
-                  run_gjk_johnson_backup, trace_gjk_with<JohnsonBackupSubAlgorithm>, false, false,
-                  swept_gjk_with<JohnsonBackupSubAlgorithm>,
-                  swept_trace_gjk_with<JohnsonBackupSubAlgorithm>},
+                  run_distance<distance_with<JohnsonBackupSubAlgorithm>>,
+                  trace_distance<traced_distance_with<JohnsonBackupSubAlgorithm>>, false, false,
+                  run_swept_distance<distance_with<JohnsonBackupSubAlgorithm>>,
+                  trace_swept_distance<traced_distance_with<JohnsonBackupSubAlgorithm>>},
     AlgorithmInfo{"gjk-sv", AnswerKind::distance,
                   "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)",
-                  run_gjk_sv, trace_gjk_with<SignedVolumesSubAlgorithm>, false, false,
-                  swept_gjk_with<SignedVolumesSubAlgorithm>,
-                  swept_trace_gjk_with<SignedVolumesSubAlgorithm>},
+                  run_distance<distance_with<SignedVolumesSubAlgorithm>>,
+                  trace_distance<traced_distance_with<SignedVolumesSubAlgorithm>>, false, false,
+                  run_swept_distance<distance_with<SignedVolumesSubAlgorithm>>,
+                  trace_swept_distance<traced_distance_with<SignedVolumesSubAlgorithm>>},
     AlgorithmInfo{"gjk-voronoi", AnswerKind::distance,
-                  "GJK distance with Voronoi-region tests (Ericson 2005)", run_gjk_voronoi,
-                  trace_gjk_with<VoronoiSubAlgorithm>, false, false,
-                  swept_gjk_with<VoronoiSubAlgorithm>, swept_trace_gjk_with<VoronoiSubAlgorithm>},
+                  "GJK distance with Voronoi-region tests (Ericson 2005)",
+                  run_distance<distance_with<VoronoiSubAlgorithm>>,
+                  trace_distance<traced_distance_with<VoronoiSubAlgorithm>>, false, false,
+                  run_swept_distance<distance_with<VoronoiSubAlgorithm>>,
+                  trace_swept_distance<traced_distance_with<VoronoiSubAlgorithm>>},
     AlgorithmInfo{"gjk-nesterov", AnswerKind::distance,
                   "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
-                  run_gjk_nesterov, trace_gjk_nesterov, false, false, swept_gjk_nesterov,
-                  swept_trace_gjk_nesterov},
+                  run_distance<nesterov_distance>, trace_distance<traced_nesterov_distance>, false,
+                  false, run_swept_distance<nesterov_distance>,
+                  trace_swept_distance<traced_nesterov_distance>},
     AlgorithmInfo{"epa", AnswerKind::distance,
                   "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
                   run_epa, nullptr, false, true, swept_epa},

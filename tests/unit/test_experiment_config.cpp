@@ -561,8 +561,7 @@ struct ExperimentFolder {
 
 }  // namespace
 
-TEST_CASE("base: an experiment over another, tables merged and arrays replaced",
-          "[unit][config]") {
+TEST_CASE("base: an experiment over another, tables merged and arrays replaced", "[unit][config]") {
   ExperimentFolder dir("base");
   dir.write("base.toml", R"(name = "base"
 seed = 7
@@ -596,9 +595,9 @@ name = "gjk-sv"
 )");
   const ExperimentConfig c = load_experiment(derived);
   CHECK(c.name == "derived");
-  CHECK(c.seed == 7);           // from the base
+  CHECK(c.seed == 7);  // from the base
   CHECK(c.touching_band == 1e-9);
-  CHECK(c.oracle);              // [oracle] merged key by key
+  CHECK(c.oracle);  // [oracle] merged key by key
   CHECK(c.depth);
   REQUIRE(c.families.size() == 1);  // "far" excluded
   CHECK(c.families[0].name == "box");
@@ -623,11 +622,11 @@ name = "gjk-sv"
 
 TEST_CASE("base and exclude_families errors name the file, line and key", "[unit][config]") {
   ExperimentFolder dir("base-errors");
-  dir.write("base.toml", "name = \"b\"\nseed = 1\ncases = 3\n[[family]]\nshape = \"box\"\n"
-                         "[[algorithm]]\nname = \"gjk-bool\"\nbogus = 1\n");
+  dir.write("base.toml",
+            "name = \"b\"\nseed = 1\ncases = 3\n[[family]]\nshape = \"box\"\n"
+            "[[algorithm]]\nname = \"gjk-bool\"\nbogus = 1\n");
   const auto bad_in_base = dir.write("d1.toml", "base = \"base.toml\"\n");
-  CHECK_THROWS_WITH(load_experiment(bad_in_base),
-                    Contains("base.toml:8") && Contains("bogus"));
+  CHECK_THROWS_WITH(load_experiment(bad_in_base), Contains("base.toml:8") && Contains("bogus"));
   const auto missing = dir.write("d2.toml", "base = \"nope.toml\"\n");
   CHECK_THROWS_WITH(load_experiment(missing),
                     Contains("d2.toml:1") && Contains("cannot read the base experiment"));

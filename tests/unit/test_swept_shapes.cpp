@@ -3,16 +3,12 @@
 // and the errors for algorithms and inputs that cannot take them.
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <cmath>
-#include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "gjklab/cli.hpp"
+#include "../support/cli_run.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/archive.hpp"
@@ -392,43 +388,10 @@ TEST_CASE("capsule family: a segment core of length 2 before scaling", "[unit][s
 
 // ---- the command line: run, replay, query ----
 
-namespace {
-
-struct CliRun {
-  int status;
-  std::string out;
-};
-
-CliRun run_cli(std::vector<std::string> args) {
-  std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args)
-    argv.push_back(a.c_str());
-  std::istringstream in;
-  std::ostringstream out, err;
-  const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
-  return {status, out.str() + err.str()};
-}
-
-struct ScratchDir {
-  std::filesystem::path path;
-  ScratchDir() {
-    path = std::filesystem::temp_directory_path() /
-           ("gjklab-swept-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
-    std::filesystem::create_directories(path);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(path); }
-  static int& counter() {
-    static int n = 0;
-    return n;
-  }
-};
-
-}  // namespace
-
 TEST_CASE("gjklab run, replay and query on sphere-swept shapes", "[smoke][swept]") {
-  ScratchDir dir;
-  const auto toml = dir.path / "swept.toml";
-  const auto h5 = dir.path / "swept.h5";
+  const testing::ScratchDir dir("swept");
+  const auto toml = dir.path() / "swept.toml";
+  const auto h5 = dir.path() / "swept.h5";
   {
     std::ofstream f(toml);
     f << "name = \"swept\"\nseed = 9\ncases = 30\noutput = \"swept.h5\"\n"
@@ -439,8 +402,8 @@ TEST_CASE("gjklab run, replay and query on sphere-swept shapes", "[smoke][swept]
          "[[algorithm]]\nname = \"gjk-johnson\"\n[[algorithm]]\nname = \"epa\"\n"
          "[[algorithm]]\nname = \"libccd-mpr\"\n";
   }
-  const CliRun run = run_cli({"run", toml.string(), "--out", h5.string()});
-  INFO(run.out);
+  const testing::CliResult run = testing::run_cli({"run", toml.string(), "--out", h5.string()});
+  INFO(run.out << run.err);
   REQUIRE(run.status == 0);
   const experiment::Archive archive = experiment::read_archive(h5);
   REQUIRE(archive.results.size() == 30);
@@ -453,27 +416,30 @@ TEST_CASE("gjklab run, replay and query on sphere-swept shapes", "[smoke][swept]
   }
   CHECK(swept_b == 30);
 
-  const CliRun replay = run_cli({"replay", h5.string(), "--case", "4", "--trace"});
-  INFO(replay.out);
+  const testing::CliResult replay =
+      testing::run_cli({"replay", h5.string(), "--case", "4", "--trace"});
+  INFO(replay.out << replay.err);
   CHECK(replay.status == 0);
   CHECK_THAT(replay.out, Catch::Contains("swept by radii"));
   CHECK_THAT(replay.out, Catch::Contains("equals the archived result"));
 
   // Two one-point files with radii: spheres 2.5 apart.
-  const auto pa = dir.path / "a.xyz", pb = dir.path / "b.xyz";
+  const auto pa = dir.path() / "a.xyz", pb = dir.path() / "b.xyz";
   std::ofstream(pa) << "0 0 0\n";
   std::ofstream(pb) << "3 4 0\n";
-  const CliRun query = run_cli({"query", pa.string(), pb.string(), "--radius-a", "1", "--radius-b",
-                                "1.5", "--algorithms", "gjk-johnson,exact"});
-  INFO(query.out);
+  const testing::CliResult query =
+      testing::run_cli({"query", pa.string(), pb.string(), "--radius-a", "1", "--radius-b", "1.5",
+                        "--algorithms", "gjk-johnson,exact"});
+  INFO(query.out << query.err);
   REQUIRE(query.status == 0);
   CHECK_THAT(query.out, Catch::Contains("\"distance\":2.5"));
   CHECK_THAT(query.out, Catch::Contains("\"core_distance2_num\":\"25\""));
   // Without named algorithms, those for polytopes only (sat, FCL, Bullet) are left out.
-  const CliRun all = run_cli({"query", pa.string(), pb.string(), "--radius-a", "1"});
+  const testing::CliResult all =
+      testing::run_cli({"query", pa.string(), pb.string(), "--radius-a", "1"});
   CHECK(all.status == 0);
   CHECK_THAT(all.out, !Catch::Contains("\"error\""));
-  const CliRun sat =
-      run_cli({"query", pa.string(), pb.string(), "--radius-a", "1", "--algorithms", "sat"});
+  const testing::CliResult sat = testing::run_cli(
+      {"query", pa.string(), pb.string(), "--radius-a", "1", "--algorithms", "sat"});
   CHECK_THAT(sat.out, Catch::Contains("polytopes only"));
 }
