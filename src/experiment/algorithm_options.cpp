@@ -125,7 +125,7 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
   static const std::vector<std::string_view> distance = {
       "max_iterations",        "convergence",      "relative_gap",     "absolute_gap_squared",
       "duality_gap_tolerance", "relative_contact", "initial_direction"};
-  if (algorithm == "gjk-bool") return {"max_iterations", "initial_direction"};
+  if (algorithm == "gjk-bool") return {"max_iterations", "start", "initial_direction"};
   if (uses_distance_options(algorithm)) return distance;
   if (algorithm == "gjk-nesterov") {
     auto keys = distance;
@@ -153,10 +153,17 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
   AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
   if (n == "gjk-bool") {
-    if (key == "max_iterations")
+    if (key == "max_iterations") {
       o.gjk_boolean.max_iterations = iterations(key, text);
-    else
+    } else if (key == "start") {
+      const auto start = boolean_start_from_string(text);
+      if (!start)
+        throw std::invalid_argument("unknown start '" + std::string(text) +
+                                    "'; valid: fixed_direction, centre_direction, centre_point");
+      o.gjk_boolean.start = *start;
+    } else {
       o.gjk_boolean.initial_direction = direction(key, text);
+    }
   } else if (uses_distance_options(n)) {
     set_distance_option(o.gjk_distance, key, text);
   } else if (n == "gjk-nesterov") {
@@ -207,6 +214,7 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
   const std::string& n = spec.name;
   if (n == "gjk-bool")
     return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)},
+            {"start", std::string(to_string(o.gjk_boolean.start))},
             {"initial_direction", text_of(o.gjk_boolean.initial_direction)}};
   if (uses_distance_options(n)) return describe_distance(o.gjk_distance);
   if (n == "gjk-nesterov") {
@@ -246,6 +254,10 @@ AlgorithmSpec spec_from_description(const std::string& name,
   AlgorithmSpec spec;
   spec.name = name;
   spec.label = name;
+  // Archives written before gjk-bool had a `start` option ran its fixed first direction.
+  if (name == "gjk-bool" &&
+      std::none_of(text.begin(), text.end(), [](const auto& kv) { return kv.first == "start"; }))
+    spec.options.gjk_boolean.start = GjkBooleanStart::fixed_direction;
   for (const auto& [key, value] : text) {
     if (key == "algorithm") continue;  // the registry name, archived with the options
     try {

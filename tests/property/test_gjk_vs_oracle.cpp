@@ -1,6 +1,7 @@
 // GJK against the exact oracle on seeded random pairs: booleans outside the touching band and
-// distances within 1e-10 of the pair's size, for every gjklab algorithm (GJK, EPA, SAT). The
-// peers' (libccd, FCL, Bullet) disagreements are counted and reported, not asserted.
+// distances within 1e-10 of the pair's size, for every gjklab algorithm (GJK, EPA, SAT, and
+// gjk-bool under each of its starts). The peers' (libccd, FCL, Bullet) disagreements are
+// counted and reported, not asserted.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 
 using namespace gjklab;
@@ -75,6 +77,23 @@ TEST_CASE("GJK agrees with the exact oracle on 2000 seeded random pairs", "[prop
         if (relative > kBand && !algorithm.peer)
           FAIL_CHECK("pair " << i << ": " << algorithm.name << " distance " << *o.distance
                              << " vs exact " << exact.distance << " (size " << size << ")");
+      }
+    }
+    // gjk-bool's other starts (the registry runs the default one above).
+    for (GjkBooleanStart start :
+         {GjkBooleanStart::fixed_direction, GjkBooleanStart::centre_direction,
+          GjkBooleanStart::centre_point}) {
+      if (start == GjkBooleanDefaults::start) continue;
+      GjkBooleanOptions options;
+      options.start = start;
+      const BooleanResult r = gjk_intersect(a, b, options);
+      const std::string name = "gjk-bool start=" + std::string(to_string(start));
+      Tally& t = tallies[name];
+      if (r.termination != Termination::converged) ++t.terminations_not_converged;
+      if (r.intersect != exact.intersect && outside_band()) {
+        ++t.wrong_outside_band;
+        FAIL_CHECK("pair " << i << ": " << name << " says intersect=" << r.intersect
+                           << ", exact distance " << exact.distance << ", size " << size);
       }
     }
     if (!exact.intersect && exact.distance <= kBand * size) ++near_touching;

@@ -436,6 +436,7 @@ mpr_tolerance = 3.3e-7
   REQUIRE(c.algorithms.size() == 3);
   const auto bool_options = as_map(describe_options(c.algorithms[0]));
   CHECK(bool_options == std::map<std::string, std::string>{{"max_iterations", "17"},
+                                                           {"start", "centre_point"},
                                                            {"initial_direction", "1 0 0"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
@@ -458,6 +459,38 @@ mpr_tolerance = 3.3e-7
     CHECK(describe_options(back) == describe_options(spec));
   }
   CHECK(ccd.count("relative_gap") == 0);
+}
+
+TEST_CASE("gjk-bool start: parsed, described, and fixed for archives that predate it",
+          "[unit][config]") {
+  const ExperimentConfig c = parse(kHead + kFamily + R"(
+[[algorithm]]
+name = "gjk-bool"
+label = "fixed"
+start = "fixed_direction"
+[[algorithm]]
+name = "gjk-bool"
+label = "centre"
+start = "centre_direction"
+[[algorithm]]
+name = "gjk-bool"
+)");
+  REQUIRE(c.algorithms.size() == 3);
+  CHECK(c.algorithms[0].options.gjk_boolean.start == GjkBooleanStart::fixed_direction);
+  CHECK(c.algorithms[1].options.gjk_boolean.start == GjkBooleanStart::centre_direction);
+  CHECK(c.algorithms[2].options.gjk_boolean.start == GjkBooleanDefaults::start);
+  for (const AlgorithmSpec& spec : c.algorithms) {
+    const AlgorithmSpec back = spec_from_description(spec.name, describe_options(spec));
+    CHECK(back.options.gjk_boolean.start == spec.options.gjk_boolean.start);
+  }
+  // An archive without the key was written by the fixed start, the only one there was.
+  const AlgorithmSpec old = spec_from_description("gjk-bool", {{"max_iterations", "64"}});
+  CHECK(old.options.gjk_boolean.start == GjkBooleanStart::fixed_direction);
+  CHECK_THROWS_WITH(
+      parse(kHead + kFamily + "\n[[algorithm]]\nname = \"gjk-bool\"\nstart = \"origin\"\n"),
+      Contains("key 'algorithm[0].start'") &&
+          Contains("unknown start 'origin'; valid: fixed_direction, centre_direction, "
+                   "centre_point"));
 }
 
 TEST_CASE("GJK distance variants: options, convergence criteria and their errors",

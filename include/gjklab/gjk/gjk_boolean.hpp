@@ -4,6 +4,12 @@
 // Search directions come from triple products (no closest-point computation), so the query
 // answers only "do the shapes intersect?". The first support point that does not pass the
 // origin, s·d < 0, proves separation: the plane through the origin with normal d separates.
+//
+// The start (GjkBooleanOptions::start): by default the simplex starts from c = c_A − c_B, the
+// difference of the shapes' vertex means, which lies in the hull of A − B and costs no support
+// evaluation, and the first direction is −c. A pair whose centres are farther apart than the
+// shapes reach is then proved separated by a single support evaluation, and an enclosing
+// simplex needs three support points instead of four.
 #pragma once
 
 #include "gjklab/geometry/support.hpp"
@@ -26,6 +32,24 @@ struct BooleanSimplex {
 /// Returns true when the origin is enclosed (on the boundary counts).
 bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
 
+/// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
+/// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
+/// finite (then the query falls back to its fixed first direction).
+template <class A, class B>
+bool centre_difference(const A& a, const B& b, Vec3& out) {
+  if constexpr (requires {
+                  { a.vertex_mean() } -> std::convertible_to<Vec3>;
+                  { b.vertex_mean() } -> std::convertible_to<Vec3>;
+                }) {
+    const Vec3 c = a.vertex_mean() - b.vertex_mean();
+    if (!c.allFinite() || c.isZero(0)) return false;
+    out = c;
+    return true;
+  } else {
+    return false;
+  }
+}
+
 }  // namespace detail
 
 template <SupportMap A, SupportMap B, class Observer = NoTrace>
@@ -33,11 +57,10 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
                             Observer&& observer = {}) {
   BooleanResult out;
   detail::BooleanSimplex simplex;
-  const SimplexVertex first = detail::minkowski_support(a, b, options.initial_direction);
-  simplex.points[0] = first.w;
-  simplex.size = 1;
-  out.support_calls = 1;
-  Vec3 direction = -simplex.points[0];
+  Vec3 direction;
+  Vec3 centre;
+  const bool from_centre =
+      options.start != GjkBooleanStart::fixed_direction && detail::centre_difference(a, b, centre);
 
   auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
     if constexpr (std::remove_reference_t<Observer>::enabled) {
@@ -56,7 +79,28 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
     out.termination = t;
     return out;
   };
-  if (!first.w.allFinite()) return finish(false, Termination::numerical_failure);
+  if (from_centre && options.start == GjkBooleanStart::centre_point) {
+    // c is a point of the hull of A − B: a simplex vertex like any support point, but free.
+    simplex.points[0] = centre;
+    simplex.size = 1;
+    direction = -centre;
+    out.iterations = 0;
+  } else {
+    const Vec3 first_direction = from_centre ? Vec3(-centre) : options.initial_direction;
+    const SimplexVertex first = detail::minkowski_support(a, b, first_direction);
+    out.support_calls = 1;
+    if (!first.w.allFinite()) return finish(false, Termination::numerical_failure);
+    // Only the centre direction points towards the origin, so only there can the first point
+    // prove separation (with fixed_direction the test is skipped, keeping its counts).
+    if (from_centre && first.w.dot(first_direction) < 0) {
+      out.iterations = 1;  // the one evaluation was the whole search
+      trace(first_direction, first, GjkStep::separated);
+      return finish(false, Termination::converged);
+    }
+    simplex.points[0] = first.w;
+    simplex.size = 1;
+    direction = -first.w;
+  }
 
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     // A zero direction means the origin lies on the current simplex: the shapes touch.

@@ -13,15 +13,62 @@
 
 namespace gjklab {
 
+/// How `gjk-bool` chooses its first search direction and first simplex point.
+///
+/// The centre starts use c = c_A − c_B, the difference of the shapes' interior points (for a
+/// Polytope its vertex mean, computed at construction). c is a point of the hull of A − B but in
+/// general not a support point. When a shape has no interior point, or c is zero or not finite
+/// (coincident means, overflow), the centre starts fall back to `fixed_direction`.
+enum class GjkBooleanStart : std::uint8_t {
+  /// The first support point is taken in initial_direction and becomes the first simplex point;
+  /// the search then heads from it towards the origin. Costs one support evaluation before the
+  /// main loop, and cannot prove separation with it.
+  fixed_direction,
+  /// The first support point w is taken in d = −c; w·d < 0 proves separation after that one
+  /// evaluation. Otherwise w is the first simplex point, as with fixed_direction (c is used
+  /// only to choose a direction, never kept in the simplex).
+  centre_direction,
+  /// c is the first simplex point (no support evaluation) and d = −c the first direction, as
+  /// in MPR's portal discovery. Separation is proved as above after one evaluation; an enclosing
+  /// simplex may have c as a vertex, which is sound because c lies in the hull of A − B (up to
+  /// the rounding of the two means), and saves one support evaluation on overlapping pairs.
+  centre_point,
+};
+
+constexpr std::string_view to_string(GjkBooleanStart s) {
+  switch (s) {
+    case GjkBooleanStart::fixed_direction:
+      return "fixed_direction";
+    case GjkBooleanStart::centre_direction:
+      return "centre_direction";
+    case GjkBooleanStart::centre_point:
+      return "centre_point";
+  }
+  return "unknown";
+}
+
+inline std::optional<GjkBooleanStart> boolean_start_from_string(std::string_view name) {
+  for (GjkBooleanStart s : {GjkBooleanStart::fixed_direction, GjkBooleanStart::centre_direction,
+                            GjkBooleanStart::centre_point})
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
 struct GjkBooleanDefaults {
   static constexpr int max_iterations = 64;
+  static constexpr GjkBooleanStart start = GjkBooleanStart::centre_point;
 };
 
 /// Options of `gjk-bool`, the simplex-walking boolean GJK.
 struct GjkBooleanOptions {
-  /// Upper bound on main-loop iterations (support evaluations after the first).
+  /// Upper bound on main-loop iterations. A main-loop iteration is a support evaluation after
+  /// the first with fixed_direction and centre_direction (whose first evaluation counts as one
+  /// iteration when it proves separation), and every support evaluation with centre_point.
   int max_iterations = GjkBooleanDefaults::max_iterations;
-  /// First search direction (any length); fixed by default so runs are reproducible.
+  /// First simplex point and search direction (see GjkBooleanStart).
+  GjkBooleanStart start = GjkBooleanDefaults::start;
+  /// First search direction (any length) of fixed_direction, and of the centre starts when
+  /// they fall back to it; fixed so that runs are reproducible.
   Vec3 initial_direction = Vec3(1, 0, 0);
 };
 
