@@ -1,5 +1,7 @@
 #include "gjklab/gjk/gjk_boolean.hpp"
 
+#include <limits>
+
 namespace gjklab::detail {
 
 namespace {
@@ -20,11 +22,27 @@ void set(BooleanSimplex& s, std::initializer_list<Vec3> points) {
     s.points[s.size++] = p;
 }
 
+/// Relative size, in units of the rounding error, below which the triple product of an edge
+/// and the origin offset is noise: |(ab × ao) × ab| ≤ this · ε · ‖ab‖² · ‖ao‖ (each of the
+/// two cross products rounds with a relative error of a few ε).
+constexpr double kCollinearNoise = 16 * std::numeric_limits<double>::epsilon();
+
+/// The origin lies on segment ab's line within rounding, between a and b: the segment, a part
+/// of A − B, holds the origin up to rounding (the shapes touch or overlap).
+bool origin_on_segment(const Vec3& a, const Vec3& b, const Vec3& towards_origin) {
+  const Vec3 ab = b - a;
+  const double noise = kCollinearNoise * ab.squaredNorm() * a.norm();
+  return same_side(ab, -a) && same_side(a - b, -b) && towards_origin.norm() <= noise;
+}
+
 bool segment_case(BooleanSimplex& s, Vec3& d) {
   const Vec3 a = s.points[0], b = s.points[1];
   const Vec3 ab = b - a, ao = -a;
   if (same_side(ab, ao)) {
     d = towards_origin_from_edge(ab, ao);
+    // Without this, an origin on the line (e.g. from the centre start on a shape symmetric
+    // about the centre line) leaves a direction of pure noise, and the walk can cycle.
+    if (origin_on_segment(a, b, d)) return true;
   } else {
     set(s, {a});
     d = ao;

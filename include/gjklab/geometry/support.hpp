@@ -56,6 +56,12 @@ class SphereSwept {
   }
   const S& core() const { return *core_; }
   double radius() const { return radius_; }
+  /// A point inside the swept shape, when the core offers one (the core's vertex mean lies in
+  /// the core, hence in the swept shape): lets queries that start from centres use it.
+  Vec3 vertex_mean() const requires requires(const S& s) {
+    { s.vertex_mean() } -> std::convertible_to<Vec3>;
+  }
+  { return core_->vertex_mean(); }
 
  private:
   const S* core_;

@@ -10,6 +10,12 @@
 // evaluation, and the first direction is −c. A pair whose centres are farther apart than the
 // shapes reach is then proved separated by a single support evaluation, and an enclosing
 // simplex needs three support points instead of four.
+//
+// Rounding. When the origin lies on a segment of the simplex within rounding, the walk reports
+// contact (touching, within a few ε of the segment's length, counts as intersecting). A walk
+// that comes back to one of its last six states (direction and simplex) would cycle: it stops
+// with Termination::cycling, its answer undetermined and reported as "not intersecting", as at
+// the step limit.
 #pragma once
 
 #include "gjklab/geometry/support.hpp"
@@ -26,6 +32,39 @@ namespace detail {
 struct BooleanSimplex {
   Vec3 points[4];
   int size = 0;
+};
+
+/// The last few states (search direction and simplex) of a walk. The walk is deterministic, so
+/// a state that comes back means a cycle that would repeat until the step limit. (A support
+/// point alone may legitimately come back: the boolean walk is not monotone.)
+class RecentStates {
+ public:
+  bool contains(const Vec3& direction, const BooleanSimplex& simplex) const {
+    for (int i = 0; i < count_; ++i)
+      if (states_[i].direction == direction && same(states_[i].simplex, simplex)) return true;
+    return false;
+  }
+  void push(const Vec3& direction, const BooleanSimplex& simplex) {
+    states_[next_] = {direction, simplex};
+    next_ = (next_ + 1) % kSize;
+    count_ = count_ < kSize ? count_ + 1 : kSize;
+  }
+
+ private:
+  static bool same(const BooleanSimplex& x, const BooleanSimplex& y) {
+    if (x.size != y.size) return false;
+    for (int i = 0; i < x.size; ++i)
+      if (x.points[i] != y.points[i]) return false;
+    return true;
+  }
+  struct State {
+    Vec3 direction;
+    BooleanSimplex simplex;
+  };
+  static constexpr int kSize = 6;
+  State states_[kSize];
+  int next_ = 0;
+  int count_ = 0;
 };
 
 /// Updates simplex and direction for the segment, triangle or tetrahedron case.
@@ -79,6 +118,7 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
     out.termination = t;
     return out;
   };
+  detail::RecentStates recent;
   if (from_centre && options.start == GjkBooleanStart::centre_point) {
     // c is a point of the hull of A − B: a simplex vertex like any support point, but free.
     simplex.points[0] = centre;
@@ -112,6 +152,12 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       trace(direction, {}, GjkStep::non_finite);
       return finish(false, Termination::numerical_failure);
     }
+    // A state seen in the last few steps: the walk cycles, and the answer is undetermined.
+    if (recent.contains(direction, simplex)) {
+      trace(direction, {}, GjkStep::repeated_support);
+      return finish(false, Termination::cycling);
+    }
+    recent.push(direction, simplex);
     const Vec3 d = direction;
     const SimplexVertex w = detail::minkowski_support(a, b, d);
     ++out.support_calls;
