@@ -13,9 +13,9 @@
 //
 // Rounding. When the origin lies on a segment of the simplex within rounding, the walk reports
 // contact (touching, within a few ε of the segment's length, counts as intersecting). A walk
-// that comes back to one of its last six states (direction and simplex) would cycle: it stops
-// with Termination::cycling, its answer undetermined and reported as "not intersecting", as at
-// the step limit.
+// that, after its first dozen steps, comes back to one of its last six states (direction and
+// simplex) would cycle: it stops with Termination::cycling, its answer undetermined and
+// reported as "not intersecting", as at the step limit.
 #pragma once
 
 #include "gjklab/geometry/support.hpp"
@@ -33,6 +33,10 @@ struct BooleanSimplex {
   Vec3 points[4];
   int size = 0;
 };
+
+/// The iteration from which the walk watches for a cycle (queries that end sooner, nearly all,
+/// skip the bookkeeping); a cycle is caught within a few periods after it.
+inline constexpr int kCycleWatchStart = 12;
 
 /// The last few states (search direction and simplex) of a walk. The walk is deterministic, so
 /// a state that comes back means a cycle that would repeat until the step limit. (A support
@@ -153,11 +157,14 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       return finish(false, Termination::numerical_failure);
     }
     // A state seen in the last few steps: the walk cycles, and the answer is undetermined.
-    if (recent.contains(direction, simplex)) {
-      trace(direction, {}, GjkStep::repeated_support);
-      return finish(false, Termination::cycling);
+    // Watched only from kCycleWatchStart on: typical queries end before it and pay nothing.
+    if (out.iterations >= detail::kCycleWatchStart) {
+      if (recent.contains(direction, simplex)) {
+        trace(direction, {}, GjkStep::repeated_support);
+        return finish(false, Termination::cycling);
+      }
+      recent.push(direction, simplex);
     }
-    recent.push(direction, simplex);
     const Vec3 d = direction;
     const SimplexVertex w = detail::minkowski_support(a, b, d);
     ++out.support_calls;
