@@ -117,12 +117,17 @@ struct ShapeStore {
   }
 };
 
-/// Hill-climbing copy of a full-scan shape (adjacency from the exact hull of `base_cloud`'s
-/// shape: pass the body-frame polytope the shape was moved from, whose adjacency it shares).
-const Polytope* with_hill_climbing(ShapeStore& store, const Polytope& shape) {
+/// The shape as the "+hc" rows use it: with hill climbing from kHillClimbingMinVertices
+/// vertices on (where it beats the scan), else the same full-scan shape.
+Polytope climbing_copy(const Polytope& shape) {
   Polytope copy = shape;
-  copy.enable_hill_climbing(exact::hull_vertex_adjacency(shape.vertices()));
-  return store.add(std::move(copy));
+  if (shape.size() >= kHillClimbingMinVertices)
+    copy.enable_hill_climbing(exact::hull_vertex_adjacency(shape.vertices()));
+  return copy;
+}
+
+const Polytope* with_hill_climbing(ShapeStore& store, const Polytope& shape) {
+  return store.add(climbing_copy(shape));
 }
 
 bool wanted(const BenchConfig& config, const std::string& name) {
@@ -135,11 +140,7 @@ std::vector<Case> seed_cases(const BenchConfig& config, ShapeStore& store, bool 
   std::vector<Polytope> base, base_hc;
   for (const DemoShape& s : kDemoShapes) {
     base.push_back(s.make());
-    if (hill_climbing) {
-      Polytope hc = base.back();
-      hc.enable_hill_climbing(exact::hull_vertex_adjacency(hc.vertices()));
-      base_hc.push_back(std::move(hc));
-    }
+    if (hill_climbing) base_hc.push_back(climbing_copy(base.back()));
   }
   int case_index = 0;
   for (const auto& [ia, ib] : kSeedPairs) {
@@ -213,11 +214,7 @@ std::vector<Case> scene_cases(const BenchConfig& config, ShapeStore& store, bool
   std::vector<Polytope> base, base_hc;
   for (const DemoShape& s : kDemoShapes) {
     base.push_back(s.make());
-    if (hill_climbing) {
-      Polytope hc = base.back();
-      hc.enable_hill_climbing(exact::hull_vertex_adjacency(hc.vertices()));
-      base_hc.push_back(std::move(hc));
-    }
+    if (hill_climbing) base_hc.push_back(climbing_copy(base.back()));
   }
   // One scene of 72 objects; the case with N objects uses its first N.
   Rng rng(config.seed * 3000017);

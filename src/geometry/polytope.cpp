@@ -105,7 +105,14 @@ const ScanFunction scan = pick_scan();
 
 }  // namespace
 
-Polytope::Polytope(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
+namespace {
+/// Source of Polytope ids (0 is never handed out).
+std::atomic<std::uint64_t> next_polytope_id{1};
+}  // namespace
+
+Polytope::Polytope(std::vector<Vec3> vertices)
+    : vertices_(std::move(vertices)),
+      id_(next_polytope_id.fetch_add(1, std::memory_order_relaxed)) {
   if (std::string problem = describe_invalid_cloud(vertices_); !problem.empty())
     throw InvalidGeometry(problem);
   mean_ = mean_of(vertices_);
@@ -116,6 +123,7 @@ Polytope::Polytope(const Polytope& other)
     : vertices_(other.vertices_),
       blocks_(other.blocks_),
       mean_(other.mean_),
+      id_(other.id_),
       graph_(other.graph_),
       start_table_(other.start_table_),
       table_resolution_(other.table_resolution_),
@@ -126,6 +134,7 @@ Polytope& Polytope::operator=(const Polytope& other) {
     vertices_ = other.vertices_;
     blocks_ = other.blocks_;
     mean_ = other.mean_;
+    id_ = other.id_;
     graph_ = other.graph_;
     start_table_ = other.start_table_;
     table_resolution_ = other.table_resolution_;
@@ -138,6 +147,7 @@ Polytope::Polytope(Polytope&& other) noexcept
     : vertices_(std::move(other.vertices_)),
       blocks_(std::move(other.blocks_)),
       mean_(other.mean_),
+      id_(other.id_),
       graph_(std::move(other.graph_)),
       start_table_(std::move(other.start_table_)),
       table_resolution_(other.table_resolution_),
@@ -147,6 +157,7 @@ Polytope& Polytope::operator=(Polytope&& other) noexcept {
   vertices_ = std::move(other.vertices_);
   blocks_ = std::move(other.blocks_);
   mean_ = other.mean_;
+  id_ = other.id_;
   graph_ = std::move(other.graph_);
   start_table_ = std::move(other.start_table_);
   table_resolution_ = other.table_resolution_;

@@ -82,6 +82,10 @@ class Polytope {
   double bounding_box_diagonal() const;
   /// Mean of the vertices (not the volume centroid); computed once, at construction.
   Vec3 vertex_mean() const { return mean_; }
+  /// Identity of the vertex list, for caches of data derived from it (hull features, a peer
+  /// library's shape object): every polytope built from a cloud gets a new id, and copies
+  /// share it (the vertices never change after construction).
+  std::uint64_t id() const { return id_; }
 
   Polytope(const Polytope& other);
   Polytope& operator=(const Polytope& other);
@@ -111,6 +115,7 @@ class Polytope {
   std::vector<Vec3> vertices_;
   std::vector<Block> blocks_;
   Vec3 mean_ = Vec3::Zero();
+  std::uint64_t id_ = 0;
   std::shared_ptr<const HullGraph> graph_;
   /// Start vertices of hill climbing: for each cell of a cube map of directions (6 faces of
   /// table_resolution_² cells), the graph vertex extreme along the cell's central direction.

@@ -75,24 +75,6 @@ class RecentStates {
 /// Returns true when the origin is enclosed (on the boundary counts).
 bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
 
-/// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
-/// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
-/// finite (then the query falls back to its fixed first direction).
-template <class A, class B>
-bool centre_difference(const A& a, const B& b, Vec3& out) {
-  if constexpr (requires {
-                  { a.vertex_mean() } -> std::convertible_to<Vec3>;
-                  { b.vertex_mean() } -> std::convertible_to<Vec3>;
-                }) {
-    const Vec3 c = a.vertex_mean() - b.vertex_mean();
-    if (!c.allFinite() || c.isZero(0)) return false;
-    out = c;
-    return true;
-  } else {
-    return false;
-  }
-}
-
 }  // namespace detail
 
 template <SupportMap A, SupportMap B, class Observer = NoTrace>

@@ -195,6 +195,24 @@ inline bool gap_converged(const GjkDistanceOptions& options, double vv, double v
 
 namespace detail {
 
+/// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
+/// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
+/// finite (then the query falls back to its fixed first direction).
+template <class A, class B>
+bool centre_difference(const A& a, const B& b, Vec3& out) {
+  if constexpr (requires {
+                  { a.vertex_mean() } -> std::convertible_to<Vec3>;
+                  { b.vertex_mean() } -> std::convertible_to<Vec3>;
+                }) {
+    const Vec3 c = a.vertex_mean() - b.vertex_mean();
+    if (!c.allFinite() || c.isZero(0)) return false;
+    out = c;
+    return true;
+  } else {
+    return false;
+  }
+}
+
 /// The starting simplex of a distance query and its closest point. Cold start (`warm` empty):
 /// the support point of A − B in options.initial_direction (one support call). Warm start:
 /// the given points, each re-evaluated on the current shapes from its vertex indices when the
@@ -228,7 +246,11 @@ void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
       return;
     }
   }
-  const SimplexVertex first = minkowski_support(a, b, options.initial_direction);
+  Vec3 centre;
+  const bool from_centre =
+      options.start == GjkDistanceStart::centre_direction && centre_difference(a, b, centre);
+  const SimplexVertex first =
+      minkowski_support(a, b, from_centre ? Vec3(-centre) : options.initial_direction);
   support_calls = 1;
   simplex.clear();
   simplex.push(first);

@@ -112,7 +112,35 @@ inline std::optional<GjkConvergence> convergence_from_string(std::string_view na
   return std::nullopt;
 }
 
+/// How a GJK distance query picks its first support point when it starts cold.
+enum class GjkDistanceStart : std::uint8_t {
+  /// In initial_direction.
+  fixed_direction,
+  /// In −c, with c = c_A − c_B the difference of the shapes' interior points (a Polytope's
+  /// vertex mean): the support point of A − B facing the origin from c, which is usually close
+  /// to the closest point and saves iterations. Falls back to initial_direction when a shape
+  /// has no interior point or c is zero or not finite.
+  centre_direction,
+};
+
+constexpr std::string_view to_string(GjkDistanceStart s) {
+  switch (s) {
+    case GjkDistanceStart::fixed_direction:
+      return "fixed_direction";
+    case GjkDistanceStart::centre_direction:
+      return "centre_direction";
+  }
+  return "unknown";
+}
+
+inline std::optional<GjkDistanceStart> distance_start_from_string(std::string_view name) {
+  for (GjkDistanceStart s : {GjkDistanceStart::fixed_direction, GjkDistanceStart::centre_direction})
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
 struct GjkDistanceDefaults {
+  static constexpr GjkDistanceStart start = GjkDistanceStart::centre_direction;
   static constexpr int max_iterations = 128;
   static constexpr GjkConvergence convergence = GjkConvergence::relative;
   static constexpr double relative_gap = 1e-12;
@@ -149,6 +177,8 @@ struct GjkDistanceOptions {
   /// pass the previous query's direction to warm-start a sequence of queries (or start from
   /// the previous query's final simplex with gjk_distance_warm_with).
   Vec3 initial_direction = Vec3(1, 0, 0);
+  /// How a cold start picks its first support point (see GjkDistanceStart).
+  GjkDistanceStart start = GjkDistanceDefaults::start;
 };
 
 struct GjkNesterovDefaults {
