@@ -45,14 +45,18 @@ namespace detail {
 template <class Solution>
 bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
   if (!s.found) return false;
-  out = {s.closest, Vec3::Zero(), Vec3::Zero(), {}};
+  // Accumulated in locals and stored once: summing into `out` directly re-reads what was just
+  // written, and the store-to-load stalls cost more than the arithmetic.
+  Vec3 witness_a = Vec3::Zero(), witness_b = Vec3::Zero();
+  std::array<double, 4> weights{};
   int kept = 0;
   for (int i = 0; i < simplex.size(); ++i) {
     if (!(s.subset & (1u << i))) continue;
-    out.witness_a += s.weights[i] * simplex[i].a;
-    out.witness_b += s.weights[i] * simplex[i].b;
-    out.weights[kept++] = s.weights[i];
+    witness_a += s.weights[i] * simplex[i].a;
+    witness_b += s.weights[i] * simplex[i].b;
+    weights[kept++] = s.weights[i];
   }
+  out = {s.closest, witness_a, witness_b, weights};
   simplex.keep(s.subset);
   return true;
 }
