@@ -91,7 +91,13 @@ bool set_distance_option(GjkDistanceOptions& o, std::string_view key, std::strin
     o.relative_contact = non_negative(key, text);
   else if (key == "initial_direction")
     o.initial_direction = direction(key, text);
-  else if (key == "convergence") {
+  else if (key == "start") {
+    const auto start = distance_start_from_string(text);
+    if (!start)
+      throw std::invalid_argument("unknown start '" + std::string(text) +
+                                  "'; valid: fixed_direction, centre_direction");
+    o.start = *start;
+  } else if (key == "convergence") {
     const auto c = convergence_from_string(text);
     if (!c)
       throw std::invalid_argument("unknown criterion '" + std::string(text) +
@@ -110,6 +116,7 @@ std::vector<std::pair<std::string, std::string>> describe_distance(const GjkDist
           {"absolute_gap_squared", round_trip(d.absolute_gap_squared)},
           {"duality_gap_tolerance", round_trip(d.duality_gap_tolerance)},
           {"relative_contact", round_trip(d.relative_contact)},
+          {"start", std::string(to_string(d.start))},
           {"initial_direction", text_of(d.initial_direction)}};
 }
 
@@ -123,8 +130,8 @@ std::string round_trip(double x) {
 
 std::vector<std::string_view> option_keys(std::string_view algorithm) {
   static const std::vector<std::string_view> distance = {
-      "max_iterations",        "convergence",      "relative_gap",     "absolute_gap_squared",
-      "duality_gap_tolerance", "relative_contact", "initial_direction"};
+      "max_iterations",        "convergence",      "relative_gap", "absolute_gap_squared",
+      "duality_gap_tolerance", "relative_contact", "start",        "initial_direction"};
   if (algorithm == "gjk-bool") return {"max_iterations", "start", "initial_direction"};
   if (uses_distance_options(algorithm)) return distance;
   if (algorithm == "gjk-nesterov") {
@@ -136,8 +143,8 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
   if (is_libccd_depth(algorithm))
     return {"max_iterations", "max_depth_iterations", "mpr_tolerance", "epa_tolerance"};
   if (algorithm == "epa")
-    return {"max_iterations", "max_faces", "epa_relative_gap", "relative_noise",
-            "gjk_max_iterations"};
+    return {"max_iterations", "max_faces",          "epa_relative_gap",
+            "relative_noise", "gjk_max_iterations", "gjk_start"};
   if (algorithm == "sat") return {"early_exit"};
 #ifdef GJKLAB_HAVE_FCL
   if (algorithm == "fcl-libccd" || algorithm == "fcl-indep")
@@ -202,6 +209,8 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
       o.epa.max_faces = iterations(key, text);
     else if (key == "gjk_max_iterations")
       o.gjk_distance.max_iterations = iterations(key, text);
+    else if (key == "gjk_start")
+      set_distance_option(o.gjk_distance, "start", text);
     else if (key == "epa_relative_gap")
       o.epa.relative_gap = non_negative(key, text);
     else
@@ -236,7 +245,8 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
             {"max_faces", std::to_string(o.epa.max_faces)},
             {"epa_relative_gap", round_trip(o.epa.relative_gap)},
             {"relative_noise", round_trip(o.epa.relative_noise)},
-            {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)}};
+            {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)},
+            {"gjk_start", std::string(to_string(o.gjk_distance.start))}};
   if (n == "sat") return {{"early_exit", o.sat.early_exit ? "true" : "false"}};
 #ifdef GJKLAB_HAVE_FCL
   if (n == "fcl-libccd" || n == "fcl-indep")
@@ -254,10 +264,17 @@ AlgorithmSpec spec_from_description(const std::string& name,
   AlgorithmSpec spec;
   spec.name = name;
   spec.label = name;
-  // Archives written before gjk-bool had a `start` option ran its fixed first direction.
-  if (name == "gjk-bool" &&
-      std::none_of(text.begin(), text.end(), [](const auto& kv) { return kv.first == "start"; }))
+  // Archives written before the GJK queries had a start option ran the fixed first direction.
+  auto described = [&](const char* key) {
+    return std::any_of(text.begin(), text.end(), [&](const auto& kv) { return kv.first == key; });
+  };
+  if (!described("start")) {
     spec.options.gjk_boolean.start = GjkBooleanStart::fixed_direction;
+    spec.options.gjk_distance.start = GjkDistanceStart::fixed_direction;
+    spec.options.gjk_nesterov.start = GjkDistanceStart::fixed_direction;
+  }
+  if (name == "epa" && !described("gjk_start"))
+    spec.options.gjk_distance.start = GjkDistanceStart::fixed_direction;
   for (const auto& [key, value] : text) {
     if (key == "algorithm") continue;  // the registry name, archived with the options
     try {

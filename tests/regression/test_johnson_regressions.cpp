@@ -32,10 +32,15 @@ TEST_CASE("johnson flat tetrahedron near contact: 102 sphere points vs 9, gap 0.
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);
-  const auto r = gjk_distance(a, b);
+  GjkDistanceOptions fixed;  // the path of the failure: the fixed first direction (1, 0, 0)
+  fixed.start = GjkDistanceStart::fixed_direction;
+  const auto r = gjk_distance(a, b, fixed);
   CHECK_FALSE(r.intersect);
   CHECK(std::abs(r.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
   CHECK(r.termination == Termination::no_progress);
+  const auto centre = gjk_distance(a, b);
+  CHECK_FALSE(centre.intersect);
+  CHECK(std::abs(centre.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
 }
 
 TEST_CASE("contact pair separated by 5.6e-14: tetrahedron holds the origin only by rounding",
@@ -49,12 +54,22 @@ TEST_CASE("contact pair separated by 5.6e-14: tetrahedron holds the origin only 
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);
   REQUIRE(exact.distance < 1e-13);
+  // The failure happened on the path from the fixed first direction (1, 0, 0), which the
+  // queries took before they started from the centre difference.
+  experiment::AlgorithmOptions fixed;
+  fixed.gjk_distance.start = GjkDistanceStart::fixed_direction;
+  fixed.gjk_nesterov.start = GjkDistanceStart::fixed_direction;
   for (const auto& algorithm : experiment::algorithms()) {
     if (algorithm.kind != experiment::AnswerKind::distance || algorithm.peer) continue;
     INFO(algorithm.name);
-    const auto o = algorithm.run(a, b, {});
+    const auto o = algorithm.run(a, b, fixed);
     CHECK_FALSE(o.intersect);
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
     CHECK(o.termination == Termination::converged);
+    // From the centre difference the simplex reaches the closest face directly; 5.6e-14 is
+    // below the contact tolerance (1e-13 of the simplex's scale), so contact is an answer too.
+    const auto centre = algorithm.run(a, b, {});
+    CHECK(std::abs(*centre.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
+    CHECK(centre.termination == Termination::converged);
   }
 }

@@ -440,7 +440,7 @@ mpr_tolerance = 3.3e-7
                                                            {"initial_direction", "1 0 0"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
-  CHECK(johnson.size() == 7);
+  CHECK(johnson.size() == 8);
   CHECK(johnson.at("max_iterations") == std::to_string(GjkDistanceDefaults::max_iterations));
   CHECK(johnson.at("convergence") == "relative");
   CHECK(std::stod(johnson.at("relative_gap")) == 0.1);
@@ -670,4 +670,29 @@ TEST_CASE("base and exclude_families errors name the file, line and key", "[unit
   CHECK_THROWS_WITH(
       parse(kHead + "exclude_families = [\"sphere_points\"]\n" + kFamily + kAlgorithm),
       Contains("excludes every family"));
+}
+
+TEST_CASE("GJK distance start: key, default, archived text and errors", "[unit][config]") {
+  const ExperimentConfig c = parse(kHead + kFamily + R"(
+[[algorithm]]
+name = "gjk-sv"
+start = "fixed_direction"
+[[algorithm]]
+name = "gjk-johnson"
+[[algorithm]]
+name = "epa"
+gjk_start = "fixed_direction"
+)");
+  CHECK(c.algorithms[0].options.gjk_distance.start == GjkDistanceStart::fixed_direction);
+  CHECK(c.algorithms[1].options.gjk_distance.start == GjkDistanceStart::centre_direction);
+  CHECK(c.algorithms[2].options.gjk_distance.start == GjkDistanceStart::fixed_direction);
+  CHECK(as_map(describe_options(c.algorithms[1])).at("start") == "centre_direction");
+  // An archive written before the key existed ran (and replays) the fixed direction.
+  const AlgorithmSpec old = spec_from_description("gjk-johnson", {{"max_iterations", "128"}});
+  CHECK(old.options.gjk_distance.start == GjkDistanceStart::fixed_direction);
+  CHECK_THROWS_WITH(parse(kHead + kFamily +
+                          "[[algorithm]]\nname = \"gjk-johnson\"\n"
+                          "start = \"sideways\"\n"),
+                    Contains("exp.toml:") && Contains("unknown start 'sideways'") &&
+                        Contains("centre_direction"));
 }
