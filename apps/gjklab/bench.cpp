@@ -16,10 +16,11 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
       "bench", "time every algorithm on identical inputs (interleaved, medians and ratios)");
   cmd->add_option("--suite", args.suite, "seed, random, scene or all (default: all)")
       ->check(CLI::IsMember({"seed", "random", "scene", "all"}));
-  cmd->add_option("--algorithms", args.algorithms,
-                  "comma-separated names, each optionally with +hc for hill-climbing support "
-                  "(default: every boolean and distance algorithm): " +
-                      experiment::algorithm_names())
+  cmd->add_option(
+         "--algorithms", args.algorithms,
+         "comma-separated names, each optionally with +hc for hill-climbing support "
+         "(default: every boolean and distance algorithm but sat, which runs when named): " +
+             experiment::algorithm_names())
       ->delimiter(',');
   cmd->add_option("--reference", args.reference,
                   "reference of every ratio (default: libccd-mpr for booleans, the fastest peer "
