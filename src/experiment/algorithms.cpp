@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <memory>
-#include <unordered_map>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "gjklab/exact/hull_features.hpp"
@@ -115,6 +115,26 @@ template <TracedDistanceQuery Query>
 Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
                              const AlgorithmOptions& o, TraceRecorder& trace) {
   return from_distance(swept_distance(Query(a, b, o, trace), r));
+}
+
+/// The registry entry of a GJK distance variant: plain, traced and sphere-swept runs of one
+/// core query.
+template <DistanceQuery Query, TracedDistanceQuery Traced>
+constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description) {
+  return {name,
+          AnswerKind::distance,
+          description,
+          run_distance<Query>,
+          trace_distance<Traced>,
+          false,
+          false,
+          run_swept_distance<Query>,
+          trace_swept_distance<Traced>};
+}
+
+template <class Sub>
+constexpr AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
+  return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>>(name, description);
 }
 
 Outcome run_libccd_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
@@ -331,40 +351,21 @@ constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
                   "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
                   trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool},
-    AlgorithmInfo{"gjk-johnson", AnswerKind::distance,
-                  "GJK distance with Johnson's distance sub-algorithm",
-                  run_distance<distance_with<JohnsonSubAlgorithm>>,
-                  trace_distance<traced_distance_with<JohnsonSubAlgorithm>>, false, false,
-                  run_swept_distance<distance_with<JohnsonSubAlgorithm>>,
-                  trace_swept_distance<traced_distance_with<JohnsonSubAlgorithm>>},
+    gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
+                                           "GJK distance with Johnson's distance sub-algorithm"),
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk,
                   nullptr, true, false, swept_libccd_gjk},
     AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr,
                   nullptr, true, false, swept_libccd_mpr},
-    AlgorithmInfo{"gjk-johnson-backup", AnswerKind::distance,
-                  "GJK distance with Johnson's sub-algorithm and van den Bergen's backup "
-                  "procedure",
-                  run_distance<distance_with<JohnsonBackupSubAlgorithm>>,
-                  trace_distance<traced_distance_with<JohnsonBackupSubAlgorithm>>, false, false,
-                  run_swept_distance<distance_with<JohnsonBackupSubAlgorithm>>,
-                  trace_swept_distance<traced_distance_with<JohnsonBackupSubAlgorithm>>},
-    AlgorithmInfo{"gjk-sv", AnswerKind::distance,
-                  "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)",
-                  run_distance<distance_with<SignedVolumesSubAlgorithm>>,
-                  trace_distance<traced_distance_with<SignedVolumesSubAlgorithm>>, false, false,
-                  run_swept_distance<distance_with<SignedVolumesSubAlgorithm>>,
-                  trace_swept_distance<traced_distance_with<SignedVolumesSubAlgorithm>>},
-    AlgorithmInfo{"gjk-voronoi", AnswerKind::distance,
-                  "GJK distance with Voronoi-region tests (Ericson 2005)",
-                  run_distance<distance_with<VoronoiSubAlgorithm>>,
-                  trace_distance<traced_distance_with<VoronoiSubAlgorithm>>, false, false,
-                  run_swept_distance<distance_with<VoronoiSubAlgorithm>>,
-                  trace_swept_distance<traced_distance_with<VoronoiSubAlgorithm>>},
-    AlgorithmInfo{"gjk-nesterov", AnswerKind::distance,
-                  "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
-                  run_distance<nesterov_distance>, trace_distance<traced_nesterov_distance>, false,
-                  false, run_swept_distance<nesterov_distance>,
-                  trace_swept_distance<traced_nesterov_distance>},
+    gjk_variant_entry<JohnsonBackupSubAlgorithm>(
+        "gjk-johnson-backup",
+        "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
+    gjk_variant_entry<SignedVolumesSubAlgorithm>(
+        "gjk-sv", "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)"),
+    gjk_variant_entry<VoronoiSubAlgorithm>("gjk-voronoi",
+                                           "GJK distance with Voronoi-region tests (Ericson 2005)"),
+    gjk_distance_entry<nesterov_distance, traced_nesterov_distance>(
+        "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes"),
     AlgorithmInfo{"epa", AnswerKind::distance,
                   "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
                   run_epa, nullptr, false, true, swept_epa},
