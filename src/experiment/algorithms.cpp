@@ -137,24 +137,6 @@ constexpr AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_vie
   return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>>(name, description);
 }
 
-Outcome run_libccd_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_boolean(peers::libccd_gjk_intersect(a, b, o.libccd));
-}
-
-Outcome run_libccd_mpr(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_boolean(peers::libccd_mpr_intersect(a, b, o.libccd));
-}
-
-Outcome run_exact(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  Outcome out;
-  exact::OracleAnswer answer = exact::solve(a.vertices(), b.vertices(), o.oracle);
-  out.intersect = answer.intersect;
-  out.distance = answer.distance;
-  out.depth = answer.depth;
-  out.exact = std::move(answer);
-  return out;
-}
-
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
 /// (and the deepest points, when the algorithm reports them) for intersecting ones.
 Outcome from_penetration(const PenetrationResult& r, bool deepest_points) {
@@ -194,14 +176,6 @@ Outcome from_libccd_penetration(const peers::LibccdPenetration& r) {
   o.support_calls = r.support_calls;
   o.termination = r.termination;
   return o;
-}
-
-Outcome run_libccd_gjk_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_libccd_penetration(peers::libccd_gjk_penetration(a, b, o.libccd));
-}
-
-Outcome run_libccd_mpr_depth(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_libccd_penetration(peers::libccd_mpr_penetration(a, b, o.libccd));
 }
 
 // Shapes prepared for an algorithm (exact hull features, a library's own shape object) are
@@ -346,6 +320,16 @@ Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
   return out;
 }
 
+using SweptRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
+                             const AlgorithmOptions&);
+
+/// The polytope query of an algorithm that takes the radii itself (the libccd adapters and the
+/// oracle): its swept query with zero radii, which is exactly the plain one.
+template <SweptRun Run>
+Outcome at_zero_radii(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return Run(a, b, SweptRadii{}, o);
+}
+
 // The optional peers (FCL, Bullet) are listed only when they were built.
 constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
@@ -353,10 +337,10 @@ constexpr std::array kAlgorithms = {
                   trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool},
     gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
                                            "GJK distance with Johnson's distance sub-algorithm"),
-    AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect", run_libccd_gjk,
-                  nullptr, true, false, swept_libccd_gjk},
-    AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect", run_libccd_mpr,
-                  nullptr, true, false, swept_libccd_mpr},
+    AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect",
+                  at_zero_radii<swept_libccd_gjk>, nullptr, true, false, swept_libccd_gjk},
+    AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect",
+                  at_zero_radii<swept_libccd_mpr>, nullptr, true, false, swept_libccd_mpr},
     gjk_variant_entry<JohnsonBackupSubAlgorithm>(
         "gjk-johnson-backup",
         "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
@@ -375,9 +359,10 @@ constexpr std::array kAlgorithms = {
                   run_sat, nullptr, false, true},
     AlgorithmInfo{"libccd-gjk-epa", AnswerKind::boolean,
                   "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
-                  run_libccd_gjk_epa, nullptr, true, true, swept_libccd_gjk_epa},
+                  at_zero_radii<swept_libccd_gjk_epa>, nullptr, true, true, swept_libccd_gjk_epa},
     AlgorithmInfo{"libccd-mpr-depth", AnswerKind::boolean, "libccd's ccdMPRPenetration",
-                  run_libccd_mpr_depth, nullptr, true, true, swept_libccd_mpr_depth},
+                  at_zero_radii<swept_libccd_mpr_depth>, nullptr, true, true,
+                  swept_libccd_mpr_depth},
 #ifdef GJKLAB_HAVE_FCL
     AlgorithmInfo{"fcl-libccd", AnswerKind::distance,
                   "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)",
@@ -396,7 +381,7 @@ constexpr std::array kAlgorithms = {
                   run_bullet_epa2, nullptr, true, true},
 #endif
     AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",
-                  run_exact, nullptr, false, true, swept_exact},
+                  at_zero_radii<swept_exact>, nullptr, false, true, swept_exact},
 };
 
 }  // namespace
