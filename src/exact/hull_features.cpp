@@ -86,6 +86,25 @@ void unique_directions(std::vector<Vec3>& d) {
   d.erase(std::unique(d.begin(), d.end()), d.end());
 }
 
+/// Puts the faces (and their normals) in the lexicographic order of the normals: the order in
+/// which CGAL's hull lists its faces can change from run to run (it varied with the thread a
+/// cloud was hulled on), and SAT's early exit counts axes in this order.
+void sort_faces_by_normal(HullFeatures& out) {
+  std::vector<std::size_t> order(out.face_normals.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return lex_less(out.face_normals[i], out.face_normals[j]);
+  });
+  std::vector<Vec3> normals;
+  std::vector<std::vector<int>> faces;
+  for (std::size_t i : order) {
+    normals.push_back(out.face_normals[i]);
+    faces.push_back(std::move(out.faces[i]));
+  }
+  out.face_normals = std::move(normals);
+  out.faces = std::move(faces);
+}
+
 void flat_features(HullFeatures& out) {
   const std::vector<Vec3>& p = out.vertices;  // the polygon's corners, in cyclic order
   const int n = static_cast<int>(p.size());
@@ -199,6 +218,7 @@ void solid_features(HullFeatures& out) {
         canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
   }
   unique_directions(out.edge_directions);
+  sort_faces_by_normal(out);
 }
 
 }  // namespace

@@ -262,3 +262,38 @@ TEST_CASE("driver: traces of every query are archived and read back", "[unit][dr
       CHECK(r.traces[1].back().step != gjklab::GjkStep::continued);
   }
 }
+
+TEST_CASE("driver: SAT's axis counts are identical with 1 and 2 threads", "[unit][driver]") {
+  // CGAL's hull listed the faces of a cloud in an order that varied with the thread that hulled
+  // it, and SAT's early exit counts axes in face order: its iteration counts differed between
+  // runs. Hull features now come in a canonical order.
+  const ExperimentConfig config = parse_experiment(R"(
+name = "sat-threads"
+seed = 23
+cases = 120
+output = "unused.h5"
+[placement]
+mode = "mixed"
+[[family]]
+shape = "sphere_points"
+vertices = [8, 48]
+[[algorithm]]
+name = "sat"
+)",
+                                                   "sat-threads.toml");
+  TempDir dir;
+  RunOptions one, two;
+  one.output = (dir.path / "one.h5").string();
+  one.threads = 1;
+  two.output = (dir.path / "two.h5").string();
+  two.threads = 2;
+  run_experiment(config, one);
+  run_experiment(config, two);
+  const Archive a1 = read_archive(*one.output), a2 = read_archive(*two.output);
+  REQUIRE(a1.results.size() == 120);
+  require_same_results(a1.results, a2.results);
+  int separated = 0;
+  for (const auto& r : a1.results)
+    separated += !r.exact->intersect;
+  CHECK(separated > 20);  // early exits happen
+}

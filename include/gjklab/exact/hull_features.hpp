@@ -20,7 +20,8 @@
 //                face_normals[0] and [1]) followed by the in-plane outward normal of every
 //                polygon edge (edge × m, one per edge, in edge order); `faces` holds the polygon
 //                twice (counter-clockwise seen from m, then from −m).
-//   dimension 3: one outward normal per face of the polytope.
+//   dimension 3: one outward normal per face of the polytope, faces in the lexicographic order
+//                of their normals (a canonical order, whatever order the hull came in).
 #pragma once
 
 #include <array>
