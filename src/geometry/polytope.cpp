@@ -47,16 +47,21 @@ static_assert(Polytope::kBlock == 8, "the scan handles a block as two groups of 
 using V4dLoad = double __attribute__((vector_size(32), may_alias));
 #define GJKLAB_LOAD4(p) (*reinterpret_cast<const V4dLoad*>(p))
 
-[[gnu::always_inline]] inline std::size_t scan_blocks(const Polytope::Block* blocks,
-                                                      std::size_t count, double dx, double dy,
-                                                      double dz) {
-  constexpr double lowest = -std::numeric_limits<double>::infinity();
-  const V4d vx = {dx, dx, dx, dx}, vy = {dy, dy, dy, dy}, vz = {dz, dz, dz, dz};
-  V4d m0 = {lowest, lowest, lowest, lowest}, m1 = m0;
-  V4i i0 = {0, 0, 0, 0}, i1 = i0, b = i0;
-  const V4i one = {1, 1, 1, 1};
-  for (std::size_t k = 0; k < count; ++k, b += one) {
-    const Polytope::Block& blk = blocks[k];
+/// The running maxima of the eight lanes over some of the blocks, with the block where each
+/// lane saw its maximum.
+struct LaneMaxima {
+  V4d m0, m1;
+  V4i i0, i1;
+
+  static LaneMaxima empty() {
+    constexpr double lowest = -std::numeric_limits<double>::infinity();
+    const V4d m = {lowest, lowest, lowest, lowest};
+    const V4i i = {0, 0, 0, 0};
+    return {m, m, i, i};
+  }
+
+  /// Takes block `blk` (number b in every lane) into the maxima.
+  [[gnu::always_inline]] void absorb(const Polytope::Block& blk, V4i b, V4d vx, V4d vy, V4d vz) {
     // The same operations in the same order as Eigen's Vec3::dot: (x·dx + y·dy) + z·dz.
     const V4d d0 = (GJKLAB_LOAD4(blk.x) * vx + GJKLAB_LOAD4(blk.y) * vy) + GJKLAB_LOAD4(blk.z) * vz;
     const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * vx + GJKLAB_LOAD4(blk.y + 4) * vy) +
@@ -67,17 +72,39 @@ using V4dLoad = double __attribute__((vector_size(32), may_alias));
     i0 = g0 ? b : i0;
     i1 = g1 ? b : i1;
   }
-  double best = m0[0];
-  std::int64_t best_index = i0[0] * Polytope::kBlock;
-  for (int l = 1; l < Polytope::kBlock; ++l) {
-    const double m = l < 4 ? m0[l] : m1[l - 4];
-    const std::int64_t index = (l < 4 ? i0[l] : i1[l - 4]) * Polytope::kBlock + l;
-    if (m > best || (m == best && index < best_index)) {
-      best = m;
-      best_index = index;
-    }
+
+  /// Largest value held (never NaN: lanes start at −∞ and only take d > m).
+  double top() const {
+    const V4d m = m0 > m1 ? m0 : m1;
+    return std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
   }
-  return static_cast<std::size_t>(best_index);
+
+  /// Smallest vertex index block·8 + lane among the lanes holding `top` (none if no lane does).
+  std::int64_t first_index_of(double top) const {
+    constexpr std::int64_t none = std::numeric_limits<std::int64_t>::max();
+    const V4d top4 = {top, top, top, top};
+    const V4i none4 = {none, none, none, none};
+    const V4i lane0 = {0, 1, 2, 3}, lane1 = {4, 5, 6, 7};
+    const V4i c0 = m0 == top4 ? i0 * Polytope::kBlock + lane0 : none4;
+    const V4i c1 = m1 == top4 ? i1 * Polytope::kBlock + lane1 : none4;
+    const V4i c = c0 < c1 ? c0 : c1;
+    return std::min(std::min(c[0], c[1]), std::min(c[2], c[3]));
+  }
+};
+
+[[gnu::always_inline]] inline std::size_t scan_blocks(const Polytope::Block* blocks,
+                                                      std::size_t count, double dx, double dy,
+                                                      double dz) {
+  const V4d vx = {dx, dx, dx, dx}, vy = {dy, dy, dy, dy}, vz = {dz, dz, dz, dz};
+  LaneMaxima lanes = LaneMaxima::empty();
+  V4i b = {0, 0, 0, 0};
+  const V4i one = {1, 1, 1, 1};
+  for (std::size_t k = 0; k < count; ++k, b += one)
+    lanes.absorb(blocks[k], b, vx, vy, vz);
+  // Branch-free reduction of the eight lanes (which lane wins is data-dependent, so
+  // compare-and-branch code mispredicts on nearly every call). (Splitting even and odd blocks
+  // into two sets of lanes, to shorten the compare-and-select chain, measured slower.)
+  return static_cast<std::size_t>(lanes.first_index_of(lanes.top()));
 }
 
 std::size_t scan_default(const Polytope::Block* blocks, std::size_t count, double dx, double dy,
@@ -92,14 +119,45 @@ std::size_t scan_default(const Polytope::Block* blocks, std::size_t count, doubl
   return scan_blocks(blocks, count, dx, dy, dz);
 }
 
-using ScanFunction = std::size_t (*)(const Polytope::Block*, std::size_t, double, double, double);
+/// Two scans in one call: the support of one shape in d and of another in −d. Both loops sit
+/// in one function body, so the processor overlaps the two independent searches instead of
+/// finishing the first before it starts the second.
+struct ScanPairAnswer {
+  std::size_t a, b;
+};
 
-ScanFunction pick_scan() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") ? scan_avx2 : scan_default;
+[[gnu::always_inline]] inline ScanPairAnswer scan_pair_blocks(const Polytope::Block* a,
+                                                              std::size_t a_count,
+                                                              const Polytope::Block* b,
+                                                              std::size_t b_count, double dx,
+                                                              double dy, double dz) {
+  return {scan_blocks(a, a_count, dx, dy, dz), scan_blocks(b, b_count, -dx, -dy, -dz)};
 }
 
-const ScanFunction scan = pick_scan();
+ScanPairAnswer scan_pair_default(const Polytope::Block* a, std::size_t a_count,
+                                 const Polytope::Block* b, std::size_t b_count, double dx,
+                                 double dy, double dz) {
+  return scan_pair_blocks(a, a_count, b, b_count, dx, dy, dz);
+}
+
+[[gnu::target("avx2")]] ScanPairAnswer scan_pair_avx2(const Polytope::Block* a, std::size_t a_count,
+                                                      const Polytope::Block* b, std::size_t b_count,
+                                                      double dx, double dy, double dz) {
+  return scan_pair_blocks(a, a_count, b, b_count, dx, dy, dz);
+}
+
+using ScanFunction = std::size_t (*)(const Polytope::Block*, std::size_t, double, double, double);
+using ScanPairFunction = ScanPairAnswer (*)(const Polytope::Block*, std::size_t,
+                                            const Polytope::Block*, std::size_t, double, double,
+                                            double);
+
+bool has_avx2() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+}
+
+const ScanFunction scan = has_avx2() ? scan_avx2 : scan_default;
+const ScanPairFunction scan_pair = has_avx2() ? scan_pair_avx2 : scan_pair_default;
 
 #undef GJKLAB_LOAD4
 
@@ -184,6 +242,16 @@ std::size_t Polytope::scan_support_index(const Vec3& d) const {
   // greater and it returns 0. The blocked scan skips NaNs instead, so that case is decided here.
   if (std::isnan(vertices_[0].dot(d))) return 0;
   return scan(blocks_.data(), blocks_.size(), d.x(), d.y(), d.z());
+}
+
+std::pair<std::size_t, std::size_t> scan_support_pair(const Polytope& a, const Vec3& d,
+                                                      const Polytope& b) {
+  // As scan_support_index: a NaN first dot product answers vertex 0 (−d's is NaN with d's).
+  if (std::isnan(a.vertices_[0].dot(d)) || std::isnan(b.vertices_[0].dot(d)))
+    return {a.scan_support_index(d), b.scan_support_index(-d)};
+  const ScanPairAnswer r = scan_pair(a.blocks_.data(), a.blocks_.size(), b.blocks_.data(),
+                                     b.blocks_.size(), d.x(), d.y(), d.z());
+  return {r.a, r.b};
 }
 
 // ---- hill climbing -------------------------------------------------------------------------

@@ -28,11 +28,13 @@ void set(BooleanSimplex& s, std::initializer_list<Vec3> points) {
 constexpr double kCollinearNoise = 16 * std::numeric_limits<double>::epsilon();
 
 /// The origin lies on segment ab's line within rounding, between a and b: the segment, a part
-/// of A − B, holds the origin up to rounding (the shapes touch or overlap).
+/// of A − B, holds the origin up to rounding (the shapes touch or overlap). The noise test
+/// comes first and on squared lengths (no square root): it fails on nearly every call.
 bool origin_on_segment(const Vec3& a, const Vec3& b, const Vec3& towards_origin) {
   const Vec3 ab = b - a;
-  const double noise = kCollinearNoise * ab.squaredNorm() * a.norm();
-  return same_side(ab, -a) && same_side(a - b, -b) && towards_origin.norm() <= noise;
+  const double noise_over_a = kCollinearNoise * ab.squaredNorm();  // noise / ‖a‖
+  return towards_origin.squaredNorm() <= noise_over_a * noise_over_a * a.squaredNorm() &&
+         same_side(ab, -a) && same_side(a - b, -b);
 }
 
 bool segment_case(BooleanSimplex& s, Vec3& d) {

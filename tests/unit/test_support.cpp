@@ -108,6 +108,44 @@ TEST_CASE("blocked scan: zero, NaN and overflowing directions as the textbook lo
       CHECK(s.support_index(d) == textbook_support(s.vertices(), d));
 }
 
+TEST_CASE("paired scan returns the two single scans' indices, ties and NaN included",
+          "[unit][support]") {
+  Rng rng(20261121);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double big = std::numeric_limits<double>::max();
+  for (int trial = 0; trial < 200; ++trial) {
+    // Different sizes on the two sides, across block boundaries.
+    const int na = 1 + trial % 37, nb = 1 + (trial * 7) % 53;
+    const bool grid = trial % 2 == 0;
+    const std::vector<Vec3> ca = grid ? grid_cloud(rng, na) : sphere_cloud(rng, na);
+    const std::vector<Vec3> cb = grid ? grid_cloud(rng, nb) : sphere_cloud(rng, nb);
+    const Polytope a(ca), b(cb);
+    for (int k = 0; k < 12; ++k) {
+      Vec3 d = k % 2 ? rng.unit_vector() * rng.log_uniform(1e-3, 1e3) : tie_direction(rng);
+      if (k == 10) d = Vec3(nan, 1, 0);
+      if (k == 11) d = Vec3(big, -big, 0);
+      const auto [i, j] = scan_support_pair(a, d, b);
+      REQUIRE(i == textbook_support(ca, d));
+      REQUIRE(j == textbook_support(cb, -d));
+    }
+  }
+}
+
+TEST_CASE("is_finite and is_zero answer as Eigen's allFinite and isZero(0)", "[unit][support]") {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double big = std::numeric_limits<double>::max();
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  const double values[] = {0.0, -0.0, 1.0, -2.5, big, -big, tiny, inf, -inf, nan};
+  for (double x : values)
+    for (double y : values)
+      for (double z : values) {
+        const Vec3 v(x, y, z);
+        REQUIRE(is_finite(v) == v.allFinite());
+        REQUIRE(is_zero(v) == v.isZero(0));
+      }
+}
+
 TEST_CASE("polytope copies keep the scan layout, and vertex_mean is the mean", "[unit][support]") {
   Rng rng(3);
   const std::vector<Vec3> cloud = sphere_cloud(rng, 21);

@@ -27,6 +27,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gjklab/geometry/types.hpp"
@@ -61,6 +62,10 @@ class Polytope {
   /// The full scan, whatever the mode: the first vertex maximising d·x. For a NaN d (or any d
   /// for which vertex 0's dot product is NaN) the answer is 0, as for the textbook loop.
   std::size_t scan_support_index(const Vec3& d) const;
+
+  /// The full scans of a in d and of b in −d, in one call (see scan_support_pair).
+  friend std::pair<std::size_t, std::size_t> scan_support_pair(const Polytope& a, const Vec3& d,
+                                                               const Polytope& b);
 
   /// Attaches hull adjacency and switches support to hill climbing. adjacency[i] lists the
   /// neighbours of point i on the hull's boundary graph (empty for points that are not hull
@@ -125,6 +130,11 @@ class Polytope {
   /// stay well defined (each then starts from some recent vertex, which is still correct).
   mutable std::atomic<std::uint32_t> hint_{0};
 };
+
+/// {a.scan_support_index(d), b.scan_support_index(−d)}, the same answers, from one call that
+/// lets the processor overlap the two searches (a GJK iteration needs both before it goes on).
+std::pair<std::size_t, std::size_t> scan_support_pair(const Polytope& a, const Vec3& d,
+                                                      const Polytope& b);
 
 /// Returns an empty string if the cloud is valid, else what is wrong with it (for messages).
 std::string describe_invalid_cloud(std::span<const Vec3> cloud);

@@ -115,7 +115,7 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
     const Vec3 first_direction = from_centre ? Vec3(-centre) : options.initial_direction;
     const SimplexVertex first = detail::minkowski_support(a, b, first_direction);
     out.support_calls = 1;
-    if (!first.w.allFinite()) return finish(false, Termination::numerical_failure);
+    if (!is_finite(first.w)) return finish(false, Termination::numerical_failure);
     // Only the centre direction points towards the origin, so only there can the first point
     // prove separation (with fixed_direction the test is skipped, keeping its counts).
     if (from_centre && first.w.dot(first_direction) < 0) {
@@ -130,11 +130,11 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
 
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     // A zero direction means the origin lies on the current simplex: the shapes touch.
-    if (direction.isZero(0)) {
+    if (is_zero(direction)) {
       trace(direction, {}, GjkStep::contact);
       return finish(true, Termination::converged);
     }
-    if (!direction.allFinite()) {
+    if (!is_finite(direction)) {
       trace(direction, {}, GjkStep::non_finite);
       return finish(false, Termination::numerical_failure);
     }
@@ -150,7 +150,7 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
     const Vec3 d = direction;
     const SimplexVertex w = detail::minkowski_support(a, b, d);
     ++out.support_calls;
-    if (!w.w.allFinite()) {
+    if (!is_finite(w.w)) {
       trace(d, w, GjkStep::non_finite);
       return finish(false, Termination::numerical_failure);
     }

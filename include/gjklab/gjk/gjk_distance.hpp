@@ -33,9 +33,18 @@ struct ClosestOnSimplex {
 /// A distance sub-algorithm: reduces the simplex to the sub-simplex whose convex hull holds
 /// the point closest to the origin, and computes that point. Returns false, leaving the
 /// simplex untouched, when it cannot decide (a degenerate simplex).
+///
+/// `solve` is the same computation without applying it: for the points y[0 … count−1] it
+/// returns {found, subset (bitmask), weights (by point index), closest}, so that the driver
+/// can test the answer before it changes its simplex.
 template <class S>
-concept SubAlgorithm = requires(const S& s, Simplex& simplex, ClosestOnSimplex& out) {
+concept SubAlgorithm = requires(const S& s, Simplex& simplex, ClosestOnSimplex& out,
+                                const std::array<Vec3, 4>& y, int count) {
   { s.reduce(simplex, out) } -> std::same_as<bool>;
+  { s.solve(y, count).found } -> std::convertible_to<bool>;
+  { s.solve(y, count).subset } -> std::convertible_to<std::uint8_t>;
+  { s.solve(y, count).weights } -> std::convertible_to<std::array<double, 4>>;
+  { s.solve(y, count).closest } -> std::convertible_to<Vec3>;
 };
 
 namespace detail {
@@ -72,9 +81,12 @@ inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
 
 /// Johnson's distance sub-algorithm (see johnson.hpp), as published: no backup procedure.
 struct JohnsonSubAlgorithm {
+  JohnsonSolution solve(const std::array<Vec3, 4>& y, int count) const {
+    return johnson_closest_point(y, count);
+  }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(
-        johnson_closest_point(detail::simplex_points(simplex), simplex.size()), simplex, out);
+    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
+                                 out);
   }
 };
 
@@ -85,6 +97,18 @@ namespace detail {
 template <SupportMap A, SupportMap B>
 SimplexVertex minkowski_support(const A& a, const B& b, const Vec3& d) {
   SimplexVertex v;
+  // Two polytopes that both scan: one call that overlaps the two searches (polytope.hpp).
+  if constexpr (requires { scan_support_pair(a, d, b); }) {
+    if (!a.uses_hill_climbing() && !b.uses_hill_climbing()) {
+      const auto [i, j] = scan_support_pair(a, d, b);
+      v.index_a = static_cast<std::int32_t>(i);
+      v.index_b = static_cast<std::int32_t>(j);
+      v.a = a.vertices()[i];
+      v.b = b.vertices()[j];
+      v.w = v.a - v.b;
+      return v;
+    }
+  }
   if constexpr (requires { a.support_index(d); }) {
     const auto i = a.support_index(d);
     v.index_a = static_cast<std::int32_t>(i);
@@ -116,7 +140,7 @@ bool reduce_to_closest_face(const Sub& sub, Simplex& simplex, ClosestOnSimplex& 
     Simplex face = full;
     face.keep(static_cast<std::uint8_t>(0xF & ~(1u << drop)));
     ClosestOnSimplex c;
-    if (!sub.reduce(face, c) || !c.v.allFinite()) continue;
+    if (!sub.reduce(face, c) || !is_finite(c.v)) continue;
     if (!found || c.v.squaredNorm() < out.v.squaredNorm()) {
       simplex = face;
       out = c;
@@ -126,17 +150,40 @@ bool reduce_to_closest_face(const Sub& sub, Simplex& simplex, ClosestOnSimplex& 
   return found;
 }
 
+/// Why a distance loop stopped: its termination, and whether it found contact.
+struct DistanceStop {
+  Termination termination;
+  bool contact;
+};
+
+/// The witness points of the simplex's closest point: Σ λ_k a_k and Σ λ_k b_k over the kept
+/// points, in order (the sums keep_solution forms, bit for bit). The loops keep only v and the
+/// weights and form the witnesses once, at the end.
+inline void combine_witnesses(const Simplex& simplex, const std::array<double, 4>& weights,
+                              Vec3& witness_a, Vec3& witness_b) {
+  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
+  for (int k = 0; k < simplex.size(); ++k) {
+    wa += weights[k] * simplex[k].a;
+    wb += weights[k] * simplex[k].b;
+  }
+  witness_a = wa;
+  witness_b = wb;
+}
+
 /// The state of one GJK distance query shared by the drivers (plain GJK and Nesterov's): the
-/// result being built, the simplex, the best point so far and the lower bound, with the three
-/// steps every driver takes the same way.
+/// result being built (its simplex is the working simplex), the best point so far and the
+/// lower bound, with the steps every driver takes the same way. The result is the caller's
+/// local, so that it is returned without a copy.
 template <class Observer>
 struct DistanceQueryState {
   const GjkDistanceOptions& options;
   Observer& observer;
-  DistanceResult out{};
-  Simplex simplex{};
+  DistanceResult& out;
+  /// v and the weights of the simplex's points (witnesses are formed by finish()).
   ClosestOnSimplex best{};
   double lower_bound = 0;
+
+  Simplex& simplex() { return out.simplex; }
 
   /// Reports the iteration to the observer when it is enabled (no work otherwise).
   void trace(const Vec3& direction, const SimplexVertex& w, double vv, double vw, GjkStep step) {
@@ -148,33 +195,57 @@ struct DistanceQueryState {
       t.v_norm_squared = vv;
       t.v_dot_w = vw;
       t.lower_bound = lower_bound;
-      t.simplex = simplex;
+      t.simplex = out.simplex;
       t.weights = best.weights;
       t.step = step;
       observer.on_iteration(t);
     }
   }
 
-  /// The result with the best point so far and the given termination.
-  DistanceResult finish(Termination t, bool contact) {
-    out.intersect = contact;
+  /// Fills the result with the best point so far and the stop's termination.
+  void finish(DistanceStop stop) {
+    out.intersect = stop.contact;
     out.closest = best.v;
-    out.witness_a = best.witness_a;
-    out.witness_b = best.witness_b;
-    out.distance = contact ? 0.0 : best.v.norm();
-    out.lower_bound = contact ? 0.0 : lower_bound;
-    out.simplex = simplex;
-    out.termination = t;
-    return out;
+    combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
+    out.distance = stop.contact ? 0.0 : best.v.norm();
+    out.lower_bound = stop.contact ? 0.0 : lower_bound;
+    out.termination = stop.termination;
   }
 
   /// Relative to the simplex, not squared: ‖v‖ ≤ relative_contact · max‖y_i‖ means v is
   /// indistinguishable from the rounding noise of the points it was computed from.
   bool in_contact(const Vec3& v, const Simplex& s) const {
+    return in_contact(v, s.max_norm_squared());
+  }
+  /// The same test given max‖y_i‖² over the points v was computed from.
+  bool in_contact(const Vec3& v, double max_norm_squared) const {
     const double tol = options.relative_contact;
-    return v.squaredNorm() <= tol * tol * s.max_norm_squared();
+    return v.squaredNorm() <= tol * tol * max_norm_squared;
   }
 };
+
+/// Largest ‖y_i‖² over the points of y in `subset` (bit i ↔ y[i]).
+inline double max_norm_squared(const std::array<Vec3, 4>& y, std::uint8_t subset) {
+  double m = 0;
+  for (int i = 0; i < 4; ++i)
+    if (subset & (1u << i)) m = std::max(m, y[i].squaredNorm());
+  return m;
+}
+
+/// Applies a sub-algorithm's solution for the simplex plus `next` (solved as point
+/// simplex.size()): adds next, keeps the chosen subset, and records v and the kept weights.
+template <class Solution>
+void apply_solution(const Solution& s, const SimplexVertex& next, Simplex& simplex,
+                    ClosestOnSimplex& best) {
+  simplex.push(next);
+  std::array<double, 4> weights{};
+  int kept = 0;
+  for (int i = 0; i < simplex.size(); ++i)
+    if (s.subset & (1u << i)) weights[kept++] = s.weights[i];
+  simplex.keep(s.subset);
+  best.v = s.closest;
+  best.weights = weights;
+}
 
 }  // namespace detail
 
@@ -199,6 +270,11 @@ inline bool gap_converged(const GjkDistanceOptions& options, double vv, double v
 
 namespace detail {
 
+/// Raises the lower bound of the distance to v·w/‖v‖ (for v·w > 0, ‖v‖² = vv).
+inline void lower_bound_update(double& lower_bound, double vw, double vv) {
+  lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
+}
+
 /// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
 /// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
 /// finite (then the query falls back to its fixed first direction).
@@ -209,7 +285,7 @@ bool centre_difference(const A& a, const B& b, Vec3& out) {
                   { b.vertex_mean() } -> std::convertible_to<Vec3>;
                 }) {
     const Vec3 c = a.vertex_mean() - b.vertex_mean();
-    if (!c.allFinite() || c.isZero(0)) return false;
+    if (!is_finite(c) || is_zero(c)) return false;
     out = c;
     return true;
   } else {
@@ -241,11 +317,11 @@ void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
         v.b = b.vertices()[v.index_b];
     }
     v.w = v.a - v.b;
-    if (v.w.allFinite() && !simplex.contains(v.w)) simplex.push(v);
+    if (is_finite(v.w) && !simplex.contains(v.w)) simplex.push(v);
   }
   if (!simplex.empty()) {
     Simplex reduced = simplex;
-    if (sub.reduce(reduced, best) && best.v.allFinite()) {
+    if (sub.reduce(reduced, best) && is_finite(best.v)) {
       simplex = reduced;
       return;
     }
@@ -261,27 +337,24 @@ void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
   best = {first.w, first.a, first.b, {1, 0, 0, 0}};
 }
 
-/// The GJK distance loop shared by the cold and warm-started queries.
+/// The GJK distance loop shared by the cold and warm-started queries; q.out.simplex and q.best
+/// hold the answer when it returns.
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
-DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
-                                std::span<const SimplexVertex> warm, Observer&& observer) {
+DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVertex> warm,
+                               DistanceQueryState<Observer>& q) {
   const Sub sub{};
-  detail::DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer};
+  const GjkDistanceOptions& options = q.options;
   DistanceResult& out = q.out;
-  Simplex& simplex = q.simplex;
+  Simplex& simplex = q.simplex();
   ClosestOnSimplex& best = q.best;
-  double& lower_bound = q.lower_bound;
   start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
-  const SimplexVertex& first = simplex[0];
   auto trace = [&](const Vec3& d, const SimplexVertex& w, double vv, double vw, GjkStep step) {
     q.trace(d, w, vv, vw, step);
   };
-  auto finish = [&](Termination t, bool contact) { return q.finish(t, contact); };
-  auto in_contact = [&](const Vec3& v, const Simplex& sx) { return q.in_contact(v, sx); };
 
-  if (!first.w.allFinite()) return finish(Termination::numerical_failure, false);
+  if (!is_finite(simplex[0].w)) return {Termination::numerical_failure, false};
   // A warm start may begin with a tetrahedron that encloses the origin.
-  if (simplex.full() || in_contact(best.v, simplex)) return finish(Termination::converged, true);
+  if (simplex.full() || q.in_contact(best.v, simplex)) return {Termination::converged, true};
 
   // Set once some support point satisfies v·w > 0: then the plane v·x = v·w separates the
   // origin from A − B, a certificate that the shapes do not intersect. A sub-algorithm that
@@ -293,60 +366,82 @@ DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions
     const double vv = v.squaredNorm();
     const SimplexVertex next = detail::minkowski_support(a, b, -v);
     ++out.support_calls;
-    if (!next.w.allFinite()) {
+    if (!is_finite(next.w)) {
       trace(-v, next, vv, NAN, GjkStep::non_finite);
-      return finish(Termination::numerical_failure, false);
+      return {Termination::numerical_failure, false};
     }
     const double vw = v.dot(next.w);
-    if (vw > 0) lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
+    if (vw > 0) lower_bound_update(q.lower_bound, vw, vv);
 
     if (gap_converged(options, vv, vw)) {
       trace(-v, next, vv, vw, GjkStep::gap_converged);
-      return finish(Termination::converged, false);
+      return {Termination::converged, false};
     }
     // w already in the simplex: in exact arithmetic its gap would be 0 (every retained point
     // lies on the plane v·x = ‖v‖²), so the new point brings no information.
     if (simplex.contains(next.w)) {
       trace(-v, next, vv, vw, GjkStep::repeated_support);
-      return finish(Termination::converged, false);
+      return {Termination::converged, false};
     }
     // Relative rounding bound of the dot product: v·w above it is a separation certificate.
     if (vw > kDotRoundoff * std::sqrt(vv) * next.w.norm()) separation_proven = true;
 
-    Simplex reduced = simplex;
-    reduced.push(next);
-    ClosestOnSimplex candidate;
-    if (!sub.reduce(reduced, candidate)) {
+    // Solve the simplex plus w first and change the simplex only once the answer is accepted.
+    std::array<Vec3, 4> y = simplex_points(simplex);
+    y[simplex.size()] = next.w;
+    const auto s = sub.solve(y, simplex.size() + 1);
+    if (!s.found) {
       trace(-v, next, vv, vw, GjkStep::degenerate);
-      return finish(Termination::degenerate_simplex, false);
+      return {Termination::degenerate_simplex, false};
     }
-    if (!candidate.v.allFinite()) {
+    if (!is_finite(s.closest)) {
       trace(-v, next, vv, vw, GjkStep::non_finite);
-      return finish(Termination::numerical_failure, false);
+      return {Termination::numerical_failure, false};
     }
-    if ((reduced.full() || in_contact(candidate.v, reduced)) && !separation_proven) {
+    const bool full = s.subset == 0xF;
+    if ((full || q.in_contact(s.closest, max_norm_squared(y, s.subset))) && !separation_proven) {
+      apply_solution(s, next, simplex, best);
+      trace(-v, next, vv, vw, GjkStep::contact);
+      return {Termination::converged, true};
+    }
+    if (full) {
+      // Contact contradicts the separation certificate: continue from the nearest face.
+      Simplex reduced = simplex;
+      reduced.push(next);
+      ClosestOnSimplex candidate;
+      if (!detail::reduce_to_closest_face(sub, reduced, candidate)) {
+        trace(-v, next, vv, vw, GjkStep::degenerate);
+        return {Termination::degenerate_simplex, false};
+      }
+      if (!(candidate.v.squaredNorm() < vv)) {
+        trace(-v, next, vv, vw, GjkStep::no_progress);
+        return {Termination::no_progress, false};
+      }
       simplex = reduced;
       best = candidate;
-      trace(-v, next, vv, vw, GjkStep::contact);
-      return finish(Termination::converged, true);
+    } else {
+      // The upper bound ‖v‖ must decrease strictly; when rounding stops it, keep the old v.
+      if (!(s.closest.squaredNorm() < vv)) {
+        trace(-v, next, vv, vw, GjkStep::no_progress);
+        return {Termination::no_progress, false};
+      }
+      apply_solution(s, next, simplex, best);
     }
-    // Contact contradicts the separation certificate: continue from the nearest face.
-    if (reduced.full() && !detail::reduce_to_closest_face(sub, reduced, candidate)) {
-      trace(-v, next, vv, vw, GjkStep::degenerate);
-      return finish(Termination::degenerate_simplex, false);
-    }
-    // The upper bound ‖v‖ must decrease strictly; when rounding stops it, keep the old v.
-    if (!(candidate.v.squaredNorm() < vv)) {
-      trace(-v, next, vv, vw, GjkStep::no_progress);
-      return finish(Termination::no_progress, false);
-    }
-    simplex = reduced;
-    best = candidate;
     trace(-v, next, vv, vw,
           out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
   }
   out.iterations = options.max_iterations;
-  return finish(Termination::step_limit, false);
+  return {Termination::step_limit, false};
+}
+
+/// Runs the loop and builds the result in the returned object itself.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
+DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
+                                std::span<const SimplexVertex> warm, Observer&& observer) {
+  DistanceResult out;
+  DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer, out};
+  q.finish(gjk_distance_loop<Sub>(a, b, warm, q));
+  return out;
 }
 
 }  // namespace detail

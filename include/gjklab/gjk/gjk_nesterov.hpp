@@ -43,21 +43,22 @@
 
 namespace gjklab {
 
-/// Nesterov-accelerated GJK distance with sub-algorithm Sub (see the file comment).
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOptions& options,
-                                 Observer&& observer = {}) {
+namespace detail {
+
+/// The accelerated loop; q.out.simplex and q.best hold the answer when it returns.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
+DistanceStop gjk_nesterov_loop(const A& a, const B& b, const GjkNesterovOptions& options,
+                               DistanceQueryState<Observer>& q) {
   const Sub sub{};
-  detail::DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer};
   DistanceResult& out = q.out;
-  Simplex& simplex = q.simplex;
+  Simplex& simplex = q.simplex();
   ClosestOnSimplex& best = q.best;
   double& lower_bound = q.lower_bound;
   detail::start_simplex(sub, a, b, options, {}, simplex, best, out.support_calls);
   auto trace = [&](const Vec3& d, const SimplexVertex& w, double vv, double vw, GjkStep step) {
     q.trace(d, w, vv, vw, step);
   };
-  auto finish = [&](Termination t, bool contact) { return q.finish(t, contact); };
+  auto finish = [](Termination t, bool contact) { return DistanceStop{t, contact}; };
   auto in_contact = [&](const Vec3& v, const Simplex& sx) { return q.in_contact(v, sx); };
 
   if (!simplex[0].w.allFinite()) return finish(Termination::numerical_failure, false);
@@ -160,6 +161,18 @@ DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOption
   }
   out.iterations = options.max_iterations;
   return finish(Termination::step_limit, false);
+}
+
+}  // namespace detail
+
+/// Nesterov-accelerated GJK distance with sub-algorithm Sub (see the file comment).
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
+DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOptions& options,
+                                 Observer&& observer = {}) {
+  DistanceResult out;
+  detail::DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer, out};
+  q.finish(detail::gjk_nesterov_loop<Sub>(a, b, options, q));
+  return out;
 }
 
 /// `gjk-nesterov`: Nesterov-accelerated GJK distance with the signed-volumes sub-algorithm.

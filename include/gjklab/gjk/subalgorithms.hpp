@@ -23,27 +23,34 @@ namespace gjklab {
 /// Johnson's sub-algorithm with van den Bergen's backup procedure (see
 /// johnson_closest_point_with_backup): never undecided for finite points.
 struct JohnsonBackupSubAlgorithm {
+  auto solve(const std::array<Vec3, 4>& y, int count) const {
+    return johnson_closest_point_with_backup(y, count);
+  }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(
-        johnson_closest_point_with_backup(detail::simplex_points(simplex), simplex.size()), simplex,
-        out);
+    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
+                                 out);
   }
 };
 
 /// The signed-volumes sub-algorithm of Montanari, Petrinic and Barbieri (2017).
 struct SignedVolumesSubAlgorithm {
+  auto solve(const std::array<Vec3, 4>& y, int count) const {
+    return signed_volumes_closest_point(y, count);
+  }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(
-        signed_volumes_closest_point(detail::simplex_points(simplex), simplex.size()), simplex,
-        out);
+    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
+                                 out);
   }
 };
 
 /// The Voronoi-region case analysis (Ericson, Real-Time Collision Detection, ch. 5).
 struct VoronoiSubAlgorithm {
+  auto solve(const std::array<Vec3, 4>& y, int count) const {
+    return voronoi_closest_point(y, count);
+  }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(
-        voronoi_closest_point(detail::simplex_points(simplex), simplex.size()), simplex, out);
+    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
+                                 out);
   }
 };
 
