@@ -312,9 +312,11 @@ void Polytope::build_start_table() {
   for (std::size_t i = 0; i < n; ++i)
     if (g.offsets[i + 1] > g.offsets[i]) on_graph.push_back(static_cast<std::uint32_t>(i));
   if (on_graph.empty()) on_graph.push_back(0);
-  // About n/24 cells per face, at most 16 × 16: walks from a cell's vertex take a step or two.
+  // About n/6 cells per face (as many cells as graph vertices), at most 32 × 32 (24 KiB): walks
+  // from a cell's vertex then take a step or two even for directions unrelated to the hint
+  // (n/24 per face measured 1.1–1.4× slower on random clouds of 128–8192 points).
   const int r =
-      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(on_graph.size()) / 24)), 1, 16);
+      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(on_graph.size()) / 6)), 1, 32);
   table_resolution_ = r;
   start_table_.assign(static_cast<std::size_t>(6 * r * r), on_graph[0]);
   for (int face = 0; face < 6; ++face) {

@@ -42,7 +42,7 @@ class InvalidGeometry : public std::invalid_argument {
 
 /// Vertex counts from which hill climbing beats the blocked scan on the machines measured
 /// (see bench/ and `gjklab bench --suite random`); callers decide, this is a suggestion.
-inline constexpr std::size_t kHillClimbingMinVertices = 256;
+inline constexpr std::size_t kHillClimbingMinVertices = 128;
 
 class Polytope {
  public:
