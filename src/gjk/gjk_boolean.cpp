@@ -16,10 +16,20 @@ Vec3 towards_origin_from_edge(const Vec3& e, const Vec3& o) {
   return e.cross(o).cross(e);
 }
 
-void set(BooleanSimplex& s, std::initializer_list<Vec3> points) {
-  s.size = 0;
-  for (const Vec3& p : points)
-    s.points[s.size++] = p;
+void set(BooleanSimplex& s, const Vec3& p0) {
+  s.points[0] = p0;
+  s.size = 1;
+}
+void set(BooleanSimplex& s, const Vec3& p0, const Vec3& p1) {
+  s.points[0] = p0;
+  s.points[1] = p1;
+  s.size = 2;
+}
+void set(BooleanSimplex& s, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  s.points[0] = p0;
+  s.points[1] = p1;
+  s.points[2] = p2;
+  s.size = 3;
 }
 
 /// Relative size, in units of the rounding error, below which the triple product of an edge
@@ -46,7 +56,7 @@ bool segment_case(BooleanSimplex& s, Vec3& d) {
     // about the centre line) leaves a direction of pure noise, and the walk can cycle.
     if (origin_on_segment(a, b, d)) return true;
   } else {
-    set(s, {a});
+    set(s, a);
     d = ao;
   }
   return false;
@@ -58,15 +68,15 @@ bool triangle_case(BooleanSimplex& s, Vec3& d) {
   const Vec3 abc = ab.cross(ac);
   if (same_side(abc.cross(ac), ao)) {
     if (same_side(ac, ao)) {
-      set(s, {a, c});
+      set(s, a, c);
       d = towards_origin_from_edge(ac, ao);
       return false;
     }
-    set(s, {a, b});
+    set(s, a, b);
     return segment_case(s, d);
   }
   if (same_side(ab.cross(abc), ao)) {
-    set(s, {a, b});
+    set(s, a, b);
     return segment_case(s, d);
   }
   // The origin projects inside the triangle: search above or below it, keeping the winding
@@ -74,7 +84,7 @@ bool triangle_case(BooleanSimplex& s, Vec3& d) {
   if (same_side(abc, ao)) {
     d = abc;
   } else {
-    set(s, {a, c, b});
+    set(s, a, c, b);
     d = -abc;
   }
   return false;
@@ -84,15 +94,15 @@ bool tetrahedron_case(BooleanSimplex& s, Vec3& d) {
   const Vec3 a = s.points[0], b = s.points[1], c = s.points[2], e = s.points[3];
   const Vec3 ab = b - a, ac = c - a, ae = e - a, ao = -a;
   if (same_side(ab.cross(ac), ao)) {
-    set(s, {a, b, c});
+    set(s, a, b, c);
     return triangle_case(s, d);
   }
   if (same_side(ac.cross(ae), ao)) {
-    set(s, {a, c, e});
+    set(s, a, c, e);
     return triangle_case(s, d);
   }
   if (same_side(ae.cross(ab), ao)) {
-    set(s, {a, e, b});
+    set(s, a, e, b);
     return triangle_case(s, d);
   }
   return true;  // the origin is inside or on the tetrahedron
