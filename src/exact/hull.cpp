@@ -105,7 +105,9 @@ std::vector<Vec3> planar_extreme_points(const std::vector<Vec3>& pts, const Vec3
   return out;
 }
 
-/// Extreme points of a full-dimensional cloud.
+/// Extreme points of a full-dimensional cloud, in lexicographic order. CGAL's hull lists its
+/// vertices in an order that depends on heap addresses (its quickhull keys a std::map by vertex
+/// handles, and its containers iterate in storage order), so that order is not used.
 std::vector<Vec3> solid_extreme_points(const std::vector<Vec3>& pts) {
   std::vector<Epick::Point_3> points;
   points.reserve(pts.size());
@@ -134,6 +136,7 @@ std::vector<Vec3> solid_extreme_points(const std::vector<Vec3>& pts) {
         });
     if (!flat_direction) out.push_back(to_vec(p));
   }
+  std::sort(out.begin(), out.end(), lex_less);
   return out;
 }
 

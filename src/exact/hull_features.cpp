@@ -137,13 +137,18 @@ void solid_features(HullFeatures& out) {
   Mesh mesh;
   CGAL::convex_hull_3(points.begin(), points.end(), mesh);
 
-  // Every input point is extreme, so the hull's vertices are exactly the input points.
-  out.vertices.clear();
+  // Every input point is extreme, so the hull's vertices are exactly the input points. They
+  // keep their (lexicographic) input order: the order of the mesh's vertices depends on heap
+  // addresses inside CGAL, and a peer's answer can depend on the vertex order (FCL's Convex
+  // averages its vertices for an interior point and breaks support ties by index).
   std::vector<int> index(mesh.number_of_vertices(), -1);
   for (Mesh::Vertex_index v : mesh.vertices()) {
     const Epick::Point_3& p = mesh.point(v);
-    index[v.idx()] = static_cast<int>(out.vertices.size());
-    out.vertices.emplace_back(p.x(), p.y(), p.z());
+    const Vec3 q(p.x(), p.y(), p.z());
+    const auto found = std::lower_bound(out.vertices.begin(), out.vertices.end(), q, lex_less);
+    if (found == out.vertices.end() || *found != q)
+      throw std::logic_error("hull features: a hull vertex is not an input point");
+    index[v.idx()] = static_cast<int>(found - out.vertices.begin());
   }
   auto vertex_of = [&](Mesh::Vertex_index v) { return index[v.idx()]; };
 
@@ -206,6 +211,8 @@ void solid_features(HullFeatures& out) {
       h = n;
       if (loop.size() > halfedges) throw std::logic_error("hull features: open face boundary");
     } while (h != start);
+    // The loop starts at its smallest index, not at whichever boundary halfedge came first.
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
     out.faces.push_back(std::move(loop));
   }
 
@@ -213,10 +220,11 @@ void solid_features(HullFeatures& out) {
     const Mesh::Halfedge_index h = mesh.halfedge(e);
     if (group(h) == group(mesh.opposite(h))) continue;  // inside a merged face
     const int a = vertex_of(mesh.source(h)), b = vertex_of(mesh.target(h));
-    out.edges.push_back({a, b});
+    out.edges.push_back({std::min(a, b), std::max(a, b)});
     out.edge_directions.push_back(
         canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
   }
+  std::sort(out.edges.begin(), out.edges.end());
   unique_directions(out.edge_directions);
   sort_faces_by_normal(out);
 }

@@ -6,11 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
 #include "gjklab/experiment/provenance.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/peers/libccd.hpp"
@@ -162,6 +166,42 @@ TEST_CASE("fcl: separated and overlapping boxes", "[unit][peers][fcl]") {
   FclOptions bad;
   bad.max_iterations = 0;
   CHECK_THROWS_AS(fcl_query(a, a, FclSolver::indep, bad), std::invalid_argument);
+}
+
+TEST_CASE("fcl: answers do not depend on where the shapes were built", "[unit][peers][fcl]") {
+  // FCL's Convex averages its vertices for an interior point and breaks support ties by vertex
+  // index, so its distances depend on the order of the hull's vertices. That order came from
+  // CGAL and depended on heap addresses: on this pair fcl-indep's distance changed in the 10th
+  // digit between runs of one experiment. Shapes built after other allocations, or on another
+  // thread, must give bit-identical answers.
+  const std::string data = GJKLAB_TEST_DATA_DIR;
+  const std::vector<Vec3> a = experiment::read_point_file(data + "/offset_pair_a.xyz");
+  const std::vector<Vec3> b = experiment::read_point_file(data + "/offset_pair_b.xyz");
+  auto answer = [&](FclSolver solver, int blocks) {
+    std::vector<std::unique_ptr<char[]>> held;  // moves CGAL's hull elsewhere on the heap
+    for (int k = 0; k < blocks; ++k)
+      held.emplace_back(std::make_unique<char[]>(16 + (k * 37 * (blocks % 7 + 3)) % 9000));
+    const FclShape sa{Polytope(a)}, sb{Polytope(b)};
+    return fcl_query(sa, sb, solver);
+  };
+  for (const FclSolver solver : {FclSolver::libccd, FclSolver::indep}) {
+    INFO((solver == FclSolver::libccd ? "fcl-libccd" : "fcl-indep"));
+    const PenetrationResult first = answer(solver, 0);
+    CHECK_FALSE(first.intersect);
+    CHECK(std::abs(first.distance - 0.3471535258698718) <= 1e-8);  // the exact distance
+    auto same = [&](const PenetrationResult& r) {
+      CHECK(r.intersect == first.intersect);
+      CHECK(r.distance == first.distance);
+      CHECK(r.witness_a == first.witness_a);
+      CHECK(r.witness_b == first.witness_b);
+      CHECK(r.termination == first.termination);
+    };
+    for (int blocks = 1; blocks <= 400; blocks += 21)
+      same(answer(solver, blocks));
+    PenetrationResult other;
+    std::thread([&] { other = answer(solver, 150); }).join();
+    same(other);
+  }
 }
 #endif
 

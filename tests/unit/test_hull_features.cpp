@@ -4,10 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
+#include <string>
+#include <thread>
 #include <vector>
 
+#include "../support/random_pairs.hpp"
 #include "gjklab/exact/hull_features.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
@@ -151,5 +156,64 @@ TEST_CASE("hull features: flat, collinear and single-point clouds", "[unit][hull
   SECTION("invalid clouds") {
     CHECK_THROWS_AS(hull_features(std::vector<Vec3>{}), std::invalid_argument);
     CHECK_THROWS_AS(hull_features(std::vector<Vec3>{{0, NAN, 0}}), std::invalid_argument);
+  }
+}
+
+namespace {
+
+/// Hull features of `cloud` after `blocks` heap allocations of assorted sizes (kept alive while
+/// the hull is built), which move where CGAL's hull puts its vertices and faces in memory.
+HullFeatures hull_features_after_allocations(const std::vector<Vec3>& cloud, int blocks) {
+  std::vector<std::unique_ptr<char[]>> held;
+  for (int k = 0; k < blocks; ++k)
+    held.emplace_back(std::make_unique<char[]>(16 + (k * 37 * (blocks % 7 + 3)) % 9000));
+  return hull_features(cloud);
+}
+
+void require_same_features(const HullFeatures& x, const HullFeatures& y) {
+  REQUIRE(x.dimension == y.dimension);
+  REQUIRE(x.vertices == y.vertices);
+  REQUIRE(x.faces == y.faces);
+  REQUIRE(x.face_normals == y.face_normals);
+  REQUIRE(x.edges == y.edges);
+  REQUIRE(x.edge_directions == y.edge_directions);
+}
+
+}  // namespace
+
+TEST_CASE("hull features: the same cloud gives the same features whatever the heap and thread",
+          "[unit][hull]") {
+  // CGAL's hull lists its vertices in an order that depends on heap addresses (its quickhull
+  // keys a std::map by vertex handles): a cloud hulled after other allocations, or on another
+  // thread, came back with its vertices, face loops and edges permuted, and FCL's answers,
+  // which depend on the vertex order, changed between runs of one experiment. Solid hulls now
+  // come in a canonical form.
+  const std::string data = GJKLAB_TEST_DATA_DIR;
+  std::vector<std::vector<Vec3>> clouds = {
+      experiment::read_point_file(data + "/offset_pair_a.xyz"),
+      experiment::read_point_file(data + "/offset_pair_b.xyz")};
+  testing::Rng rng(41);
+  for (int n : {12, 25, 40, 64})
+    clouds.push_back(testing::random_cloud(rng, testing::CloudKind::sphere, n));
+  for (const std::vector<Vec3>& cloud : clouds) {
+    INFO(cloud.size() << " points");
+    const HullFeatures first = hull_features(cloud);
+    REQUIRE(first.dimension == 3);
+    // The canonical form: sorted vertices, loops from their smallest index, sorted edges.
+    CHECK(std::is_sorted(
+        first.vertices.begin(), first.vertices.end(), [](const Vec3& a, const Vec3& b) {
+          return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        }));
+    for (const std::vector<int>& loop : first.faces)
+      CHECK(loop.front() == *std::min_element(loop.begin(), loop.end()));
+    for (const auto& [a, b] : first.edges)
+      CHECK(a < b);
+    CHECK(std::is_sorted(first.edges.begin(), first.edges.end()));
+    if (cloud.front().norm() <= 1) check_faces(first);  // its tolerances are absolute
+    for (int blocks = 1; blocks <= 400; blocks += 21)
+      require_same_features(first, hull_features_after_allocations(cloud, blocks));
+    HullFeatures other;
+    std::thread([&] { other = hull_features_after_allocations(cloud, 150); }).join();
+    require_same_features(first, other);
   }
 }
