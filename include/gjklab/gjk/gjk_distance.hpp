@@ -49,24 +49,41 @@ concept SubAlgorithm = requires(const S& s, Simplex& simplex, ClosestOnSimplex& 
 
 namespace detail {
 
+/// The witness points of the simplex's closest point: Σ λ_k a_k and Σ λ_k b_k over the kept
+/// points, in order. The loops keep only v and the weights and form the witnesses once, at the
+/// end.
+inline void combine_witnesses(const Simplex& simplex, const std::array<double, 4>& weights,
+                              Vec3& witness_a, Vec3& witness_b) {
+  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
+  for (int k = 0; k < simplex.size(); ++k) {
+    wa += weights[k] * simplex[k].a;
+    wb += weights[k] * simplex[k].b;
+  }
+  witness_a = wa;
+  witness_b = wb;
+}
+
+/// Keeps the subset a sub-algorithm's solution chose and records v and the kept points'
+/// weights, in order, in `out` (its witnesses are left alone).
+template <class Solution>
+void keep_subset(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
+  std::array<double, 4> weights{};
+  int kept = 0;
+  for (int i = 0; i < simplex.size(); ++i)
+    if (s.subset & (1u << i)) weights[kept++] = s.weights[i];
+  simplex.keep(s.subset);
+  out.v = s.closest;
+  out.weights = weights;
+}
+
 /// Applies a sub-algorithm's answer (subset, weights by original index, closest point) to the
-/// simplex and the closest-point record. False, leaving both untouched, if nothing was found.
+/// simplex and the closest-point record, witnesses included. False, leaving both untouched, if
+/// nothing was found.
 template <class Solution>
 bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
   if (!s.found) return false;
-  // Accumulated in locals and stored once: summing into `out` directly re-reads what was just
-  // written, and the store-to-load stalls cost more than the arithmetic.
-  Vec3 witness_a = Vec3::Zero(), witness_b = Vec3::Zero();
-  std::array<double, 4> weights{};
-  int kept = 0;
-  for (int i = 0; i < simplex.size(); ++i) {
-    if (!(s.subset & (1u << i))) continue;
-    witness_a += s.weights[i] * simplex[i].a;
-    witness_b += s.weights[i] * simplex[i].b;
-    weights[kept++] = s.weights[i];
-  }
-  out = {s.closest, witness_a, witness_b, weights};
-  simplex.keep(s.subset);
+  keep_subset(s, simplex, out);
+  combine_witnesses(simplex, out.weights, out.witness_a, out.witness_b);
   return true;
 }
 
@@ -156,20 +173,6 @@ struct DistanceStop {
   bool contact;
 };
 
-/// The witness points of the simplex's closest point: Σ λ_k a_k and Σ λ_k b_k over the kept
-/// points, in order (the sums keep_solution forms, bit for bit). The loops keep only v and the
-/// weights and form the witnesses once, at the end.
-inline void combine_witnesses(const Simplex& simplex, const std::array<double, 4>& weights,
-                              Vec3& witness_a, Vec3& witness_b) {
-  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
-  for (int k = 0; k < simplex.size(); ++k) {
-    wa += weights[k] * simplex[k].a;
-    wb += weights[k] * simplex[k].b;
-  }
-  witness_a = wa;
-  witness_b = wb;
-}
-
 /// The state of one GJK distance query shared by the drivers (plain GJK and Nesterov's): the
 /// result being built (its simplex is the working simplex), the best point so far and the
 /// lower bound, with the steps every driver takes the same way. The result is the caller's
@@ -238,13 +241,7 @@ template <class Solution>
 void apply_solution(const Solution& s, const SimplexVertex& next, Simplex& simplex,
                     ClosestOnSimplex& best) {
   simplex.push(next);
-  std::array<double, 4> weights{};
-  int kept = 0;
-  for (int i = 0; i < simplex.size(); ++i)
-    if (s.subset & (1u << i)) weights[kept++] = s.weights[i];
-  simplex.keep(s.subset);
-  best.v = s.closest;
-  best.weights = weights;
+  keep_subset(s, simplex, best);
 }
 
 }  // namespace detail
