@@ -82,6 +82,20 @@ void BM_SupportBlockedScan(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 
+/// The blocked scan when each call needs the previous answer, as in a GJK iteration: the next
+/// direction is chosen by the index just returned, so calls cannot overlap (latency, not
+/// throughput).
+void BM_SupportBlockedScanChained(benchmark::State& state) {
+  const Polytope p(sphere_cloud(static_cast<int>(state.range(0)), 1));
+  const auto dirs = random_directions(256, 2);
+  std::size_t k = 0, last = 0;
+  for (auto _ : state) {
+    last = p.scan_support_index(dirs[(k++ + last) & 255]);
+    benchmark::DoNotOptimize(last);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
 void BM_SupportHillClimbRandom(benchmark::State& state) {
   const auto cloud = sphere_cloud(static_cast<int>(state.range(0)), 1);
   Polytope p(cloud);
@@ -117,6 +131,7 @@ void BM_SupportDemoShape(benchmark::State& state) {
 
 BENCHMARK(BM_SupportTextbook)->RangeMultiplier(4)->Range(8, 8192);
 BENCHMARK(BM_SupportBlockedScan)->RangeMultiplier(4)->Range(8, 8192);
+BENCHMARK(BM_SupportBlockedScanChained)->RangeMultiplier(4)->Range(8, 8192);
 BENCHMARK(BM_SupportHillClimbRandom)->RangeMultiplier(4)->Range(8, 8192);
 BENCHMARK(BM_SupportHillClimbCoherent)->RangeMultiplier(4)->Range(8, 8192);
 BENCHMARK(BM_SupportDemoShape)->DenseRange(0, 3);

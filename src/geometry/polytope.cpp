@@ -92,19 +92,31 @@ struct LaneMaxima {
   }
 };
 
+/// The direction d in every lane.
+struct Direction4 {
+  V4d x, y, z;
+  Direction4(double dx, double dy, double dz)
+      : x{dx, dx, dx, dx}, y{dy, dy, dy, dy}, z{dz, dz, dz, dz} {}
+};
+
+/// The first vertex of the lanes' maxima. Branch-free: which lane wins is data-dependent, so
+/// compare-and-branch code mispredicts on nearly every call.
+[[gnu::always_inline]] inline std::size_t winner(const LaneMaxima& lanes) {
+  return static_cast<std::size_t>(lanes.first_index_of(lanes.top()));
+}
+
 [[gnu::always_inline]] inline std::size_t scan_blocks(const Polytope::Block* blocks,
                                                       std::size_t count, double dx, double dy,
                                                       double dz) {
-  const V4d vx = {dx, dx, dx, dx}, vy = {dy, dy, dy, dy}, vz = {dz, dz, dz, dz};
+  const Direction4 d(dx, dy, dz);
   LaneMaxima lanes = LaneMaxima::empty();
   V4i b = {0, 0, 0, 0};
   const V4i one = {1, 1, 1, 1};
+  // (Splitting even and odd blocks into two sets of lanes, to shorten the compare-and-select
+  // chain, measured slower.)
   for (std::size_t k = 0; k < count; ++k, b += one)
-    lanes.absorb(blocks[k], b, vx, vy, vz);
-  // Branch-free reduction of the eight lanes (which lane wins is data-dependent, so
-  // compare-and-branch code mispredicts on nearly every call). (Splitting even and odd blocks
-  // into two sets of lanes, to shorten the compare-and-select chain, measured slower.)
-  return static_cast<std::size_t>(lanes.first_index_of(lanes.top()));
+    lanes.absorb(blocks[k], b, d.x, d.y, d.z);
+  return winner(lanes);
 }
 
 std::size_t scan_default(const Polytope::Block* blocks, std::size_t count, double dx, double dy,
@@ -131,7 +143,23 @@ struct ScanPairAnswer {
                                                               const Polytope::Block* b,
                                                               std::size_t b_count, double dx,
                                                               double dy, double dz) {
-  return {scan_blocks(a, a_count, dx, dy, dz), scan_blocks(b, b_count, -dx, -dy, -dz)};
+  const Direction4 da(dx, dy, dz), db(-dx, -dy, -dz);
+  LaneMaxima la = LaneMaxima::empty(), lb = LaneMaxima::empty();
+  V4i blk = {0, 0, 0, 0};
+  const V4i one = {1, 1, 1, 1};
+  // Block k of both shapes in one step: the compiler keeps two searches in flight (written as
+  // two loops, it finishes the first, reduction included, before it starts the second).
+  const std::size_t common = std::min(a_count, b_count);
+  std::size_t k = 0;
+  for (; k < common; ++k, blk += one) {
+    la.absorb(a[k], blk, da.x, da.y, da.z);
+    lb.absorb(b[k], blk, db.x, db.y, db.z);
+  }
+  for (V4i rest = blk; k < a_count; ++k, rest += one)
+    la.absorb(a[k], rest, da.x, da.y, da.z);
+  for (k = common; k < b_count; ++k, blk += one)
+    lb.absorb(b[k], blk, db.x, db.y, db.z);
+  return {winner(la), winner(lb)};
 }
 
 ScanPairAnswer scan_pair_default(const Polytope::Block* a, std::size_t a_count,
