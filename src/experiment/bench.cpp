@@ -558,7 +558,8 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
                                                   : scene_cases(config, store, hc);
     for (const Case& c : cases) {
       if (progress) *progress << "bench: " << suite << " / " << c.name << "\n" << std::flush;
-      std::vector<BenchRecord> rows = measure_case(c, suite_entries, config, options, support_costs);
+      std::vector<BenchRecord> rows =
+          measure_case(c, suite_entries, config, options, support_costs);
       // Ratios within the case.
       auto median_of = [&](const std::string& n) -> std::optional<double> {
         for (const BenchRecord& r : rows)
