@@ -384,7 +384,10 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       return {Termination::converged, false};
     }
     // Relative rounding bound of the dot product: v·w above it is a separation certificate.
-    if (vw > kDotRoundoff * std::sqrt(vv) * next.w.norm()) separation_proven = true;
+    // (Once proven, the two square roots are skipped: they share a unit with the
+    // sub-algorithm's divisions, which the next iteration waits for.)
+    if (!separation_proven && vw > kDotRoundoff * std::sqrt(vv) * next.w.norm())
+      separation_proven = true;
 
     // Solve the simplex plus w first and change the simplex only once the answer is accepted.
     std::array<Vec3, 4> y = simplex_points(simplex);
