@@ -117,9 +117,14 @@ TEST_CASE("bench: hill-climbing rows, an explicit reference and the scene suite"
     if (rec["algorithm"] == "gjk-johnson+hc") {
       CHECK(rec["ratio_to_full_scan"].is_number());
       CHECK(rec["ratio_to_floor"].is_null());
+      CHECK(rec["floor_independent_ns"].is_null());
     } else {
       CHECK(rec["ratio_to_reference"].get<double>() == 1.0);
       CHECK(rec["ratio_to_floor"].is_number());
+      // Both floors: dependent support calls (the table's) and independent ones.
+      CHECK(rec["floor_ns"].get<double>() > 0);
+      CHECK(rec["floor_independent_ns"].get<double>() > 0);
+      CHECK(rec["ratio_to_floor_independent"].is_number());
     }
     // Hill climbing answers the same queries: same iteration counts on these generic clouds.
   }
