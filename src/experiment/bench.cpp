@@ -345,7 +345,7 @@ SupportCost support_cost(const Polytope& p, double batch_seconds) {
     const int reps = std::max(1, static_cast<int>(0.1 * batch_seconds / once));
     std::vector<double> samples;
     for (int s = 0; s < 7; ++s)
-      samples.push_back(round(reps) * 1e9 / (reps * static_cast<double>(directions.size())));
+      samples.push_back(round(reps) * 1e9 / (reps * static_cast<double>(kDirections)));
     return quantile(samples, 0.5);
   };
   SupportCost cost;

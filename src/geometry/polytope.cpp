@@ -47,6 +47,13 @@ static_assert(Polytope::kBlock == 8, "the scan handles a block as two groups of 
 using V4dLoad = double __attribute__((vector_size(32), may_alias));
 #define GJKLAB_LOAD4(p) (*reinterpret_cast<const V4dLoad*>(p))
 
+/// The direction d in every lane.
+struct Direction4 {
+  V4d x, y, z;
+  Direction4(double dx, double dy, double dz)
+      : x{dx, dx, dx, dx}, y{dy, dy, dy, dy}, z{dz, dz, dz, dz} {}
+};
+
 /// The running maxima of the eight lanes over some of the blocks, with the block where each
 /// lane saw its maximum.
 struct LaneMaxima {
@@ -61,11 +68,12 @@ struct LaneMaxima {
   }
 
   /// Takes block `blk` (number b in every lane) into the maxima.
-  [[gnu::always_inline]] void absorb(const Polytope::Block& blk, V4i b, V4d vx, V4d vy, V4d vz) {
+  [[gnu::always_inline]] void absorb(const Polytope::Block& blk, V4i b, const Direction4& d) {
     // The same operations in the same order as Eigen's Vec3::dot: (x·dx + y·dy) + z·dz.
-    const V4d d0 = (GJKLAB_LOAD4(blk.x) * vx + GJKLAB_LOAD4(blk.y) * vy) + GJKLAB_LOAD4(blk.z) * vz;
-    const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * vx + GJKLAB_LOAD4(blk.y + 4) * vy) +
-                   GJKLAB_LOAD4(blk.z + 4) * vz;
+    const V4d d0 =
+        (GJKLAB_LOAD4(blk.x) * d.x + GJKLAB_LOAD4(blk.y) * d.y) + GJKLAB_LOAD4(blk.z) * d.z;
+    const V4d d1 = (GJKLAB_LOAD4(blk.x + 4) * d.x + GJKLAB_LOAD4(blk.y + 4) * d.y) +
+                   GJKLAB_LOAD4(blk.z + 4) * d.z;
     const V4i g0 = d0 > m0, g1 = d1 > m1;
     m0 = g0 ? d0 : m0;
     m1 = g1 ? d1 : m1;
@@ -92,13 +100,6 @@ struct LaneMaxima {
   }
 };
 
-/// The direction d in every lane.
-struct Direction4 {
-  V4d x, y, z;
-  Direction4(double dx, double dy, double dz)
-      : x{dx, dx, dx, dx}, y{dy, dy, dy, dy}, z{dz, dz, dz, dz} {}
-};
-
 /// The first vertex of the lanes' maxima. Branch-free: which lane wins is data-dependent, so
 /// compare-and-branch code mispredicts on nearly every call.
 [[gnu::always_inline]] inline std::size_t winner(const LaneMaxima& lanes) {
@@ -115,7 +116,7 @@ struct Direction4 {
   // (Splitting even and odd blocks into two sets of lanes, to shorten the compare-and-select
   // chain, measured slower.)
   for (std::size_t k = 0; k < count; ++k, b += one)
-    lanes.absorb(blocks[k], b, d.x, d.y, d.z);
+    lanes.absorb(blocks[k], b, d);
   return winner(lanes);
 }
 
@@ -152,13 +153,14 @@ struct ScanPairAnswer {
   const std::size_t common = std::min(a_count, b_count);
   std::size_t k = 0;
   for (; k < common; ++k, blk += one) {
-    la.absorb(a[k], blk, da.x, da.y, da.z);
-    lb.absorb(b[k], blk, db.x, db.y, db.z);
+    la.absorb(a[k], blk, da);
+    lb.absorb(b[k], blk, db);
   }
+  // The longer shape's remaining blocks (at most one of these two loops runs).
   for (V4i rest = blk; k < a_count; ++k, rest += one)
-    la.absorb(a[k], rest, da.x, da.y, da.z);
+    la.absorb(a[k], rest, da);
   for (k = common; k < b_count; ++k, blk += one)
-    lb.absorb(b[k], blk, db.x, db.y, db.z);
+    lb.absorb(b[k], blk, db);
   return {winner(la), winner(lb)};
 }
 
