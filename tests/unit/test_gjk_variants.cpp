@@ -268,3 +268,20 @@ TEMPLATE_TEST_CASE("warm start from the previous simplex: same answers, no more 
   CHECK(empty.iterations == cold.iterations);
   CHECK(empty.support_calls == cold.support_calls);
 }
+
+TEST_CASE("separation certificate: squared and unsquared bounds agree at every scale",
+          "[unit][variants]") {
+  // ‖v‖ = 2^k and ‖w‖ = 2^(k+1), v·w 2× and 0.5× the rounding bound kDotRoundoff·‖v‖‖w‖:
+  // from lengths where the squared threshold underflows (k below about −230) to where it
+  // overflows (k above about 280), while ‖v‖² and ‖w‖² stay normal doubles.
+  for (int k = -500; k <= 500; k += 20) {
+    const double s = std::ldexp(1.0, k);
+    const double vv = s * s, ww = 4 * s * s;  // ‖v‖ = s, ‖w‖ = 2s
+    const double bound = kDotRoundoff * s * (2 * s);
+    CAPTURE(k);
+    CHECK(detail::separation_certified(2 * bound, vv, ww));
+    CHECK_FALSE(detail::separation_certified(0.5 * bound, vv, ww));
+    CHECK_FALSE(detail::separation_certified(0.0, vv, ww));
+    CHECK_FALSE(detail::separation_certified(-bound, vv, ww));
+  }
+}

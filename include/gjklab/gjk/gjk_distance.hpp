@@ -87,11 +87,8 @@ bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
   return true;
 }
 
-inline std::array<Vec3, 4> simplex_points(const Simplex& simplex) {
-  std::array<Vec3, 4> y;
-  for (int i = 0; i < simplex.size(); ++i)
-    y[i] = simplex[i].w;
-  return y;
+inline const std::array<Vec3, 4>& simplex_points(const Simplex& simplex) {
+  return simplex.points();
 }
 
 }  // namespace detail
@@ -270,6 +267,18 @@ inline bool gap_converged(const GjkDistanceOptions& options, double vv, double v
 
 namespace detail {
 
+/// True if v·w = vw is a separation certificate: above the relative rounding bound of the dot
+/// product, vw > kDotRoundoff·‖v‖·‖w‖, for ‖v‖² = vv and ‖w‖² = ww. Compared squared, so that no
+/// square root (which shares a unit with the sub-algorithm's divisions that the next iteration
+/// waits for) is taken, except where the squared threshold is not a normal double (‖v‖‖w‖
+/// below about 1e-139 or above 1e169): there the comparison is made unsquared, as stated.
+inline bool separation_certified(double vw, double vv, double ww) {
+  if (!(vw > 0)) return false;
+  const double threshold_squared = kDotRoundoff * kDotRoundoff * vv * ww;
+  if (std::isnormal(threshold_squared)) return vw * vw > threshold_squared;
+  return vw > kDotRoundoff * std::sqrt(vv) * std::sqrt(ww);
+}
+
 /// Raises the lower bound of the distance to v·w/‖v‖ (for v·w > 0, ‖v‖² = vv).
 inline void lower_bound_update(double& lower_bound, double vw, double vv) {
   lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
@@ -383,10 +392,7 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       trace(-v, next, vv, vw, GjkStep::repeated_support);
       return {Termination::converged, false};
     }
-    // Relative rounding bound of the dot product: v·w above it is a separation certificate.
-    // (Once proven, the two square roots are skipped: they share a unit with the
-    // sub-algorithm's divisions, which the next iteration waits for.)
-    if (!separation_proven && vw > kDotRoundoff * std::sqrt(vv) * next.w.norm())
+    if (!separation_proven && separation_certified(vw, vv, next.w.squaredNorm()))
       separation_proven = true;
 
     // Solve the simplex plus w first and change the simplex only once the answer is accepted.
@@ -402,7 +408,7 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       return {Termination::numerical_failure, false};
     }
     const bool full = s.subset == 0xF;
-    if ((full || q.in_contact(s.closest, max_norm_squared(y, s.subset))) && !separation_proven) {
+    if (!separation_proven && (full || q.in_contact(s.closest, max_norm_squared(y, s.subset)))) {
       apply_solution(s, next, simplex, best);
       trace(-v, next, vv, vw, GjkStep::contact);
       return {Termination::converged, true};

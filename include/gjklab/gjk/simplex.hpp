@@ -33,21 +33,31 @@ class Simplex {
     return {vertices_.data(), static_cast<std::size_t>(size_)};
   }
 
-  void push(const SimplexVertex& v) { vertices_[size_++] = v; }
+  /// The points w_i in order, stored contiguously (w_i = (*this)[i].w): the input of the
+  /// sub-algorithms, read on every iteration without gathering them from the 80-byte vertices.
+  const std::array<Vec3, kCapacity>& points() const { return points_; }
+
+  void push(const SimplexVertex& v) {
+    points_[size_] = v.w;
+    vertices_[size_++] = v;
+  }
   void clear() { size_ = 0; }
 
   /// Keeps the vertices whose bit is set in mask (bit i ↔ vertex i), preserving their order.
   void keep(std::uint8_t mask) {
     int out = 0;
     for (int i = 0; i < size_; ++i)
-      if (mask & (1u << i)) vertices_[out++] = vertices_[i];
+      if (mask & (1u << i)) {
+        points_[out] = points_[i];
+        vertices_[out++] = vertices_[i];
+      }
     size_ = out;
   }
 
   /// True if w equals (bitwise) one of the simplex points.
   bool contains(const Vec3& w) const {
     for (int i = 0; i < size_; ++i)
-      if (vertices_[i].w == w) return true;
+      if (points_[i] == w) return true;
     return false;
   }
 
@@ -55,12 +65,13 @@ class Simplex {
   double max_norm_squared() const {
     double m = 0;
     for (int i = 0; i < size_; ++i)
-      m = std::max(m, vertices_[i].w.squaredNorm());
+      m = std::max(m, points_[i].squaredNorm());
     return m;
   }
 
  private:
   std::array<SimplexVertex, kCapacity> vertices_{};
+  std::array<Vec3, kCapacity> points_{};
   int size_ = 0;
 };
 
