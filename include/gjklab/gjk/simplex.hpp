@@ -46,11 +46,14 @@ class Simplex {
   /// Keeps the vertices whose bit is set in mask (bit i ↔ vertex i), preserving their order.
   void keep(std::uint8_t mask) {
     int out = 0;
-    for (int i = 0; i < size_; ++i)
-      if (mask & (1u << i)) {
+    for (int i = 0; i < size_; ++i) {
+      if (!(mask & (1u << i))) continue;
+      if (out != i) {  // the leading kept vertices are already in place
         points_[out] = points_[i];
-        vertices_[out++] = vertices_[i];
+        vertices_[out] = vertices_[i];
       }
+      ++out;
+    }
     size_ = out;
   }
 
