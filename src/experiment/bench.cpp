@@ -303,61 +303,93 @@ double quantile(std::vector<double> v, double q) {
   return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-/// Measured cost of one full-scan support call on a shape (ns): median over rounds of 64 random
-/// directions.
-struct SupportCost {
+/// The cost of one full-scan support call on a shape (ns per call), sampled in rounds of 64
+/// random directions that are timed between the queries' batches (see measure_case), so that
+/// the floor and the queries it is compared with see the machine in the same state.
+class SupportCostSampler {
+ public:
+  SupportCostSampler(const Polytope& shape, double budget_seconds) : shape_(&shape) {
+    dependent_reps_ = calibrated_reps(&SupportCostSampler::dependent_round, budget_seconds);
+    independent_reps_ = calibrated_reps(&SupportCostSampler::independent_round, budget_seconds);
+  }
+
+  /// One timed round of each kind, each after an untimed one (as the queries' batches: the
+  /// shape's data as warm as the caches allow, whatever ran before).
+  void sample() {
+    seconds_of(&SupportCostSampler::dependent_round, 1);
+    seconds_of(&SupportCostSampler::independent_round, 1);
+    dependent_ns_.push_back(ns_per_call(&SupportCostSampler::dependent_round, dependent_reps_));
+    independent_ns_.push_back(
+        ns_per_call(&SupportCostSampler::independent_round, independent_reps_));
+  }
+
   /// Each call's direction chosen by the previous call's answer, as in a GJK iteration, whose
   /// next direction needs the support point just found: calls cannot overlap (latency).
-  double dependent_ns = 0;
+  /// Median over the samples.
+  double dependent_ns() const { return quantile(dependent_ns_, 0.5); }
   /// Independent calls, which the processor overlaps (throughput): a lower bound that no
-  /// query whose directions depend on its support points can reach.
-  double independent_ns = 0;
-};
+  /// query whose directions depend on its support points can reach. Median over the samples.
+  double independent_ns() const { return quantile(independent_ns_, 0.5); }
 
-SupportCost support_cost(const Polytope& p, double batch_seconds) {
-  constexpr std::size_t kDirections = 64;  // a power of two: the next index is a mask, no division
-  static const std::vector<Vec3> directions = [] {
-    Rng rng(12345);
-    std::vector<Vec3> d;
-    for (std::size_t i = 0; i < kDirections; ++i)
-      d.push_back(rng.unit_vector());
+ private:
+  static constexpr std::size_t kDirections = 64;  // a power of two: the next index is a mask
+  using Round = std::size_t (SupportCostSampler::*)(int) const;
+
+  static const std::vector<Vec3>& directions() {
+    static const std::vector<Vec3> d = [] {
+      Rng rng(12345);
+      std::vector<Vec3> out;
+      for (std::size_t i = 0; i < kDirections; ++i)
+        out.push_back(rng.unit_vector());
+      return out;
+    }();
     return d;
-  }();
-  std::size_t sum = 0;
-  auto independent_round = [&](int reps) {
-    const auto start = Clock::now();
+  }
+  std::size_t independent_round(int reps) const {
+    std::size_t sum = 0;
     for (int r = 0; r < reps; ++r)
-      for (const Vec3& d : directions)
-        sum += p.scan_support_index(d);
-    return seconds_since(start);
-  };
-  auto dependent_round = [&](int reps) {
-    const auto start = Clock::now();
+      for (const Vec3& d : directions())
+        sum += shape_->scan_support_index(d);
+    return sum;
+  }
+  std::size_t dependent_round(int reps) const {
     std::size_t last = 0;
     for (int r = 0; r < reps; ++r)
       for (std::size_t k = 0; k < kDirections; ++k)
-        last = p.scan_support_index(directions[(k + last) & (kDirections - 1)]);
-    sum += last;
+        last = shape_->scan_support_index(directions()[(k + last) & (kDirections - 1)]);
+    return last;
+  }
+  double seconds_of(Round round, int reps) const {
+    const auto start = Clock::now();
+    g_sink = g_sink + static_cast<double>((this->*round)(reps));
     return seconds_since(start);
-  };
-  auto median_ns = [&](auto&& round) {
-    const double once = std::max(round(1), 1e-9);
-    const int reps = std::max(1, static_cast<int>(0.1 * batch_seconds / once));
-    std::vector<double> samples;
-    for (int s = 0; s < 7; ++s)
-      samples.push_back(round(reps) * 1e9 / (reps * static_cast<double>(kDirections)));
-    return quantile(samples, 0.5);
-  };
-  SupportCost cost;
-  cost.dependent_ns = median_ns(dependent_round);
-  cost.independent_ns = median_ns(independent_round);
-  g_sink = g_sink + static_cast<double>(sum);
-  return cost;
+  }
+  int calibrated_reps(Round round, double budget_seconds) const {
+    const double once = std::max(seconds_of(round, 1), 1e-9);
+    return std::clamp(static_cast<int>(budget_seconds / once), 1, 1 << 20);
+  }
+  double ns_per_call(Round round, int reps) const {
+    return seconds_of(round, reps) * 1e9 / (reps * static_cast<double>(kDirections));
+  }
+
+  const Polytope* shape_;
+  int dependent_reps_ = 1, independent_reps_ = 1;
+  std::vector<double> dependent_ns_, independent_ns_;
+};
+
+/// The distinct shapes of the full-scan rows' pairs, each with its support-cost sampler; a
+/// round lasts about a tenth of a batch.
+std::map<const Polytope*, SupportCostSampler> floor_samplers(const Case& c,
+                                                             const BenchConfig& config) {
+  std::map<const Polytope*, SupportCostSampler> out;
+  for (const BenchPair& p : c.pairs)
+    for (const Polytope* s : {p.a, p.b})
+      if (!out.count(s)) out.emplace(s, SupportCostSampler(*s, 0.1 * config.batch_seconds));
+  return out;
 }
 
 std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& entries,
-                                      const BenchConfig& config, const AlgorithmOptions& options,
-                                      std::map<const Polytope*, SupportCost>& support_costs) {
+                                      const BenchConfig& config, const AlgorithmOptions& options) {
   const std::size_t m = entries.size();
   std::vector<BenchRecord> records(m);
   std::vector<int> reps(m, 1);
@@ -391,23 +423,19 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
   for (std::size_t e = 0; e < m; ++e)
     run_loop(entries[e], inputs[e], options, reps[e]);
 
-  // Cost floor of full-scan rows: each pair's support calls times its shapes' support cost.
+  // Support calls of each full-scan row's queries, pair by pair, for its cost floor.
+  const bool any_full_scan =
+      std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return !e.hill_climbing; });
+  std::vector<std::vector<double>> calls(m);
   for (std::size_t e = 0; e < m; ++e) {
     if (entries[e].hill_climbing) continue;
-    double floor = 0, floor_independent = 0;
     for (const BenchPair& p : inputs[e]) {
-      for (const Polytope* s : {p.a, p.b})
-        if (!support_costs.count(s)) support_costs[s] = support_cost(*s, config.batch_seconds);
       const BenchTally t = run_loop(entries[e], std::span<const BenchPair>(&p, 1), options, 1);
-      const auto calls = static_cast<double>(t.support_calls);
-      floor += calls * (support_costs[p.a].dependent_ns + support_costs[p.b].dependent_ns);
-      floor_independent +=
-          calls * (support_costs[p.a].independent_ns + support_costs[p.b].independent_ns);
+      calls[e].push_back(static_cast<double>(t.support_calls));
     }
-    const auto queries = static_cast<double>(std::max<std::size_t>(inputs[e].size(), 1));
-    records[e].floor_ns = floor / queries;
-    records[e].floor_independent_ns = floor_independent / queries;
   }
+  std::map<const Polytope*, SupportCostSampler> samplers;
+  if (any_full_scan) samplers = floor_samplers(c, config);
 
   // Interleaved samples: A B C A B C … Each timed batch follows one untimed pass over the same
   // inputs, so that it starts with its data as warm as the caches allow, whatever ran before it
@@ -423,6 +451,23 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
       samples[e].push_back(seconds * 1e9 /
                            (static_cast<double>(reps[e]) * static_cast<double>(inputs[e].size())));
     }
+    // The support-cost rounds take their turn in the same rotation.
+    for (auto& [shape, sampler] : samplers)
+      sampler.sample();
+  }
+  // Cost floor of full-scan rows: each pair's support calls times its shapes' support cost.
+  for (std::size_t e = 0; e < m; ++e) {
+    if (entries[e].hill_climbing) continue;
+    double floor = 0, floor_independent = 0;
+    for (std::size_t k = 0; k < inputs[e].size(); ++k) {
+      const SupportCostSampler& a = samplers.at(inputs[e][k].a);
+      const SupportCostSampler& b = samplers.at(inputs[e][k].b);
+      floor += calls[e][k] * (a.dependent_ns() + b.dependent_ns());
+      floor_independent += calls[e][k] * (a.independent_ns() + b.independent_ns());
+    }
+    const auto queries = static_cast<double>(std::max<std::size_t>(inputs[e].size(), 1));
+    records[e].floor_ns = floor / queries;
+    records[e].floor_independent_ns = floor_independent / queries;
   }
   for (std::size_t e = 0; e < m; ++e) {
     BenchRecord& r = records[e];
@@ -543,7 +588,6 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
 
   AlgorithmOptions options;
   ShapeStore store;
-  std::map<const Polytope*, SupportCost> support_costs;
 
   for (const std::string& suite : config.suites) {
     std::vector<Entry> suite_entries = entries;
@@ -558,8 +602,7 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
                                                   : scene_cases(config, store, hc);
     for (const Case& c : cases) {
       if (progress) *progress << "bench: " << suite << " / " << c.name << "\n" << std::flush;
-      std::vector<BenchRecord> rows =
-          measure_case(c, suite_entries, config, options, support_costs);
+      std::vector<BenchRecord> rows = measure_case(c, suite_entries, config, options);
       // Ratios within the case.
       auto median_of = [&](const std::string& n) -> std::optional<double> {
         for (const BenchRecord& r : rows)
