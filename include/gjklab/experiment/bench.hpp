@@ -25,7 +25,10 @@
 // support calls took time. c_X is measured with each call's direction depending on the
 // previous call's answer, as in GJK, where a direction needs the support point before it (the
 // latency of a call). The same floor with independent calls, which the processor overlaps
-// (throughput, 2-3x lower on 8-vertex shapes), is reported beside it.
+// (throughput, 2-3x lower on 8-vertex shapes), is reported beside it. c_X is sampled in the
+// same rotation as the queries' batches (a round of about a tenth of a batch per shape after
+// each rotation, itself after an untimed round) and its median taken, so that the floor and
+// the queries see the machine in the same state.
 #pragma once
 
 #include <cstdint>
