@@ -11,21 +11,15 @@
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
+#include "random_inputs.hpp"
 
 namespace {
 
 using gjklab::Polytope;
 using gjklab::Vec3;
+using gjklab::bench::random_unit;
 
 constexpr int kConfigurations = 8;
-
-Vec3 random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
-  for (;;) {
-    const Vec3 g(normal(rng), normal(rng), normal(rng));
-    if (g.norm() > 1e-9) return g.normalized();
-  }
-}
 
 gjklab::Mat3 random_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;

@@ -9,19 +9,13 @@
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
+#include "random_inputs.hpp"
 
 namespace {
 
 using gjklab::Polytope;
 using gjklab::Vec3;
-
-Vec3 random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
-  for (;;) {
-    const Vec3 g(normal(rng), normal(rng), normal(rng));
-    if (g.norm() > 1e-9) return g.normalized();
-  }
-}
+using gjklab::bench::random_unit;
 
 std::vector<Vec3> sphere_cloud(int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

@@ -87,10 +87,6 @@ bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
   return true;
 }
 
-inline const std::array<Vec3, 4>& simplex_points(const Simplex& simplex) {
-  return simplex.points();
-}
-
 }  // namespace detail
 
 /// Johnson's distance sub-algorithm (see johnson.hpp), as published: no backup procedure.
@@ -99,8 +95,7 @@ struct JohnsonSubAlgorithm {
     return johnson_closest_point(y, count);
   }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
-                                 out);
+    return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
@@ -396,7 +391,7 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       separation_proven = true;
 
     // Solve the simplex plus w first and change the simplex only once the answer is accepted.
-    std::array<Vec3, 4> y = simplex_points(simplex);
+    std::array<Vec3, 4> y = simplex.points();
     y[simplex.size()] = next.w;
     const auto s = sub.solve(y, simplex.size() + 1);
     if (!s.found) {

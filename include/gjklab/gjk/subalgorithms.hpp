@@ -27,8 +27,7 @@ struct JohnsonBackupSubAlgorithm {
     return johnson_closest_point_with_backup(y, count);
   }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
-                                 out);
+    return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
@@ -38,8 +37,7 @@ struct SignedVolumesSubAlgorithm {
     return signed_volumes_closest_point(y, count);
   }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
-                                 out);
+    return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
@@ -49,8 +47,7 @@ struct VoronoiSubAlgorithm {
     return voronoi_closest_point(y, count);
   }
   bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
-    return detail::keep_solution(solve(detail::simplex_points(simplex), simplex.size()), simplex,
-                                 out);
+    return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
