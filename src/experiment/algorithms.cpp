@@ -463,6 +463,37 @@ void tally(BenchTally& t, const DistanceResult& r) {
   t.distance_sum += r.distance;
 }
 
+/// The same tallies as run_bench_loop_via_registry takes from an Outcome.
+void tally(BenchTally& t, const PenetrationResult& r) {
+  ++t.queries;
+  t.iterations += r.iterations;
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+  if (!r.intersect) t.distance_sum += r.distance;
+}
+
+void tally(BenchTally& t, const EpaResult& r) {
+  ++t.queries;
+  t.iterations += r.gjk_iterations + r.iterations;  // as run_epa: GJK's, then EPA's
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+  if (!r.intersect) t.distance_sum += r.distance;
+}
+
+void tally(BenchTally& t, const peers::LibccdPenetration& r) {
+  ++t.queries;
+  t.iterations += r.iterations;
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+}
+
+void tally(BenchTally& t, const peers::SatResult& r) {
+  ++t.queries;
+  t.iterations += r.axes_tested;
+  t.support_calls += r.support_calls;
+  t.intersections += r.intersect;
+}
+
 /// One loop shape for every algorithm: `query` is called directly (and inlined where the
 /// compiler can see it), once per pair and repetition.
 template <class Query>
@@ -480,10 +511,25 @@ BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptio
   });
 }
 
-BenchTally bench_gjk_johnson(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                             int reps) {
+template <class Sub>
+BenchTally bench_gjk_distance(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                              int reps) {
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return gjk_distance(a, b, o.gjk_distance);
+    return gjk_distance_with<Sub>(a, b, o.gjk_distance);
+  });
+}
+
+BenchTally bench_gjk_nesterov(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                              int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return gjk_nesterov(a, b, o.gjk_nesterov);
+  });
+}
+
+BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  EpaWorkspace workspace;  // reused across the batch's queries, as run_epa's per thread
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   });
 }
 
@@ -499,16 +545,89 @@ BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOpt
   });
 }
 
+BenchTally bench_libccd_gjk_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                                int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_gjk_penetration(a, b, o.libccd);
+  });
+}
+
+BenchTally bench_libccd_mpr_depth(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                                  int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_mpr_penetration(a, b, o.libccd);
+  });
+}
+
+/// The loop of an algorithm that queries shapes prepared for it (`Prepare`: Polytope → shared
+/// pointer to the prepared shape): each pair's prepared shapes are looked up once per call,
+/// before its repetitions, so the timed queries call the library directly, as the other loops.
+template <class Prepare, class Query>
+BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
+                               Query&& query) {
+  using Shape = decltype(prepare(std::declval<const Polytope&>()));
+  std::vector<std::pair<Shape, Shape>> shapes;
+  shapes.reserve(pairs.size());
+  for (const BenchPair& p : pairs)
+    shapes.emplace_back(prepare(*p.a), prepare(*p.b));
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r)
+    for (const auto& [a, b] : shapes)
+      tally(t, query(*a, *b));
+  return t;
+}
+
+BenchTally bench_sat(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return prepared_bench_loop(pairs, reps, sat_shape,
+                             [&](const peers::SatShape& a, const peers::SatShape& b) {
+                               return peers::sat_query(a, b, o.sat);
+                             });
+}
+
+#ifdef GJKLAB_HAVE_FCL
+template <peers::FclSolver Solver>
+BenchTally bench_fcl(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return prepared_bench_loop(pairs, reps, fcl_shape,
+                             [&](const peers::FclShape& a, const peers::FclShape& b) {
+                               return peers::fcl_query(a, b, Solver, o.fcl);
+                             });
+}
+#endif
+
+#ifdef GJKLAB_HAVE_BULLET
+template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
+BenchTally bench_bullet(std::span<const BenchPair> pairs, const AlgorithmOptions&, int reps) {
+  return prepared_bench_loop(pairs, reps, bullet_shape, Query);
+}
+#endif
+
 struct NamedBenchLoop {
   std::string_view name;
   BenchLoop loop;
 };
 
+// Every registry algorithm but `exact` (minutes per query on large clouds) has a direct loop.
 constexpr std::array kBenchLoops = {
     NamedBenchLoop{"gjk-bool", bench_gjk_bool},
-    NamedBenchLoop{"gjk-johnson", bench_gjk_johnson},
+    NamedBenchLoop{"gjk-johnson", bench_gjk_distance<JohnsonSubAlgorithm>},
+    NamedBenchLoop{"gjk-johnson-backup", bench_gjk_distance<JohnsonBackupSubAlgorithm>},
+    NamedBenchLoop{"gjk-sv", bench_gjk_distance<SignedVolumesSubAlgorithm>},
+    NamedBenchLoop{"gjk-voronoi", bench_gjk_distance<VoronoiSubAlgorithm>},
+    NamedBenchLoop{"gjk-nesterov", bench_gjk_nesterov},
+    NamedBenchLoop{"epa", bench_epa},
+    NamedBenchLoop{"sat", bench_sat},
     NamedBenchLoop{"libccd-gjk", bench_libccd_gjk},
     NamedBenchLoop{"libccd-mpr", bench_libccd_mpr},
+    NamedBenchLoop{"libccd-gjk-epa", bench_libccd_gjk_epa},
+    NamedBenchLoop{"libccd-mpr-depth", bench_libccd_mpr_depth},
+#ifdef GJKLAB_HAVE_FCL
+    NamedBenchLoop{"fcl-libccd", bench_fcl<peers::FclSolver::libccd>},
+    NamedBenchLoop{"fcl-indep", bench_fcl<peers::FclSolver::indep>},
+#endif
+#ifdef GJKLAB_HAVE_BULLET
+    NamedBenchLoop{"bullet-gjk", bench_bullet<peers::bullet_gjk_query>},
+    NamedBenchLoop{"bullet-epa2", bench_bullet<peers::bullet_epa2_query>},
+#endif
 };
 
 }  // namespace
