@@ -74,7 +74,9 @@ class Simplex {
 
  private:
   std::array<SimplexVertex, kCapacity> vertices_{};
-  std::array<Vec3, kCapacity> points_{};
+  // Zeroed explicitly: `{}` leaves Eigen vectors uninitialised, and a copy of the simplex reads
+  // the unused slots too.
+  std::array<Vec3, kCapacity> points_{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   int size_ = 0;
 };
 
