@@ -448,50 +448,37 @@ namespace gjklab::experiment {
 
 namespace {
 
+/// Adds one query to the tallies; `distance` is added to the distance sum (0 when the answer
+/// has none, or when the shapes intersect, as the registry's Outcome reports it).
+void count_query(BenchTally& t, long long iterations, long long support_calls, bool intersect,
+                 double distance = 0) {
+  ++t.queries;
+  t.iterations += iterations;
+  t.support_calls += support_calls;
+  t.intersections += intersect;
+  t.distance_sum += distance;
+}
+
+// The same tallies as run_bench_loop_via_registry takes from each algorithm's Outcome.
 void tally(BenchTally& t, const BooleanResult& r) {
-  ++t.queries;
-  t.iterations += r.iterations;
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
+  count_query(t, r.iterations, r.support_calls, r.intersect);
 }
-
 void tally(BenchTally& t, const DistanceResult& r) {
-  ++t.queries;
-  t.iterations += r.iterations;
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
-  t.distance_sum += r.distance;
+  count_query(t, r.iterations, r.support_calls, r.intersect, r.distance);
 }
-
-/// The same tallies as run_bench_loop_via_registry takes from an Outcome.
 void tally(BenchTally& t, const PenetrationResult& r) {
-  ++t.queries;
-  t.iterations += r.iterations;
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
-  if (!r.intersect) t.distance_sum += r.distance;
+  count_query(t, r.iterations, r.support_calls, r.intersect, r.intersect ? 0.0 : r.distance);
 }
-
 void tally(BenchTally& t, const EpaResult& r) {
-  ++t.queries;
-  t.iterations += r.gjk_iterations + r.iterations;  // as run_epa: GJK's, then EPA's
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
-  if (!r.intersect) t.distance_sum += r.distance;
+  // As run_epa: GJK's iterations, then EPA's.
+  count_query(t, r.gjk_iterations + r.iterations, r.support_calls, r.intersect,
+              r.intersect ? 0.0 : r.distance);
 }
-
 void tally(BenchTally& t, const peers::LibccdPenetration& r) {
-  ++t.queries;
-  t.iterations += r.iterations;
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
+  count_query(t, r.iterations, r.support_calls, r.intersect);
 }
-
 void tally(BenchTally& t, const peers::SatResult& r) {
-  ++t.queries;
-  t.iterations += r.axes_tested;
-  t.support_calls += r.support_calls;
-  t.intersections += r.intersect;
+  count_query(t, r.axes_tested, r.support_calls, r.intersect);
 }
 
 /// One loop shape for every algorithm: `query` is called directly (and inlined where the
@@ -645,11 +632,7 @@ BenchTally run_bench_loop_via_registry(const AlgorithmInfo& algorithm,
   for (int r = 0; r < repetitions; ++r) {
     for (const BenchPair& p : pairs) {
       const Outcome o = algorithm.run(*p.a, *p.b, options);
-      ++t.queries;
-      t.iterations += o.iterations;
-      t.support_calls += o.support_calls;
-      t.intersections += o.intersect;
-      if (o.distance) t.distance_sum += *o.distance;
+      count_query(t, o.iterations, o.support_calls, o.intersect, o.distance.value_or(0.0));
     }
   }
   return t;
