@@ -35,6 +35,10 @@ std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
   if (o.distance) j["distance"] = *o.distance;
   if (o.depth) j["depth"] = *o.depth;
   if (o.normal) j["normal"] = {o.normal->x(), o.normal->y(), o.normal->z()};
+  if (o.witness_a && o.witness_b) {
+    j["witness_a"] = {o.witness_a->x(), o.witness_a->y(), o.witness_a->z()};
+    j["witness_b"] = {o.witness_b->x(), o.witness_b->y(), o.witness_b->z()};
+  }
   j["iterations"] = o.iterations;
   j["support_calls"] = o.support_calls;
   j["termination"] = to_string(o.termination);
@@ -44,11 +48,15 @@ std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
     const std::string prefix = o.exact->swept ? "core_" : "";
     j[prefix + "distance2_num"] = o.exact->distance_squared.numerator;
     j[prefix + "distance2_den"] = o.exact->distance_squared.denominator;
-    j["hull_vertices_a"] = o.exact->hull_vertices_a;
-    j["hull_vertices_b"] = o.exact->hull_vertices_b;
+    j["method"] = to_string(o.exact->method);
+    if (o.exact->hull_vertices_a >= 0) {
+      j["hull_vertices_a"] = o.exact->hull_vertices_a;
+      j["hull_vertices_b"] = o.exact->hull_vertices_b;
+    }
     if (o.exact->depth_squared) {
       j[prefix + "depth2_num"] = o.exact->depth_squared->numerator;
       j[prefix + "depth2_den"] = o.exact->depth_squared->denominator;
+      j["depth_method"] = to_string(o.exact->depth_method);
     }
   }
   return j.dump();

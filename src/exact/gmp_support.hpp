@@ -39,6 +39,9 @@ class Mpq {
 /// The exact value of a finite double.
 void set_double(mpq_ptr out, double x);
 
+/// The double nearest to q (ties to even).
+double nearest_double(mpq_srcptr q);
+
 /// The public decimal form of q (q must be canonical: lowest terms, positive denominator).
 Rational to_rational(mpq_srcptr q);
 

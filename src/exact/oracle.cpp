@@ -16,10 +16,12 @@
 #include <CGAL/Polytope_distance_d.h>
 #include <CGAL/Polytope_distance_d_traits_3.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gmp_support.hpp"
@@ -46,7 +48,7 @@ void assign(mpq_ptr out, const CGAL::Gmpzf& x) {
   if (e < 0) mpq_div_2exp(out, out, static_cast<mp_bitcnt_t>(-e));
 }
 
-std::vector<Kernel::Point_3> to_kernel(const std::vector<Vec3>& points) {
+std::vector<Kernel::Point_3> to_kernel(std::span<const Vec3> points) {
   std::vector<Kernel::Point_3> out;
   out.reserve(points.size());
   for (const Vec3& p : points)
@@ -55,7 +57,7 @@ std::vector<Kernel::Point_3> to_kernel(const std::vector<Vec3>& points) {
 }
 
 /// out := the exact squared distance between the hulls of the two point sets.
-void squared_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, mpq_ptr out) {
+void squared_distance(std::span<const Vec3> a, std::span<const Vec3> b, mpq_ptr out) {
   const std::vector<Kernel::Point_3> pa = to_kernel(a), pb = to_kernel(b);
   const PolytopeDistance pd(pa.begin(), pa.end(), pb.begin(), pb.end());
   detail::Mpq den;
@@ -70,28 +72,89 @@ void squared_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, mp
 
 }  // namespace
 
-OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const OracleOptions& options) {
+namespace {
+
+/// The QP path's inputs: each cloud's extreme points (the hulls are the same), computed once.
+struct Hulls {
+  std::span<const Vec3> a, b;
+  std::optional<detail::HullSummary> hull_a, hull_b;
+
+  const detail::HullSummary& of_a() {
+    if (!hull_a) hull_a = detail::hull_summary(a);
+    return *hull_a;
+  }
+  const detail::HullSummary& of_b() {
+    if (!hull_b) hull_b = detail::hull_summary(b);
+    return *hull_b;
+  }
+};
+
+Rational qp_distance_squared(Hulls& hulls) {
+  detail::Mpq d2;
+  squared_distance(hulls.of_a().extreme_points, hulls.of_b().extreme_points, d2.get());
+  return detail::to_rational(d2.get());
+}
+
+Rational minkowski_depth_squared(Hulls& hulls) {
+  detail::Mpq depth2;
+  detail::penetration_depth_squared(hulls.of_a().extreme_points, hulls.of_b().extreme_points,
+                                    depth2.get());
+  return detail::to_rational(depth2.get());
+}
+
+bool same(const Rational& x, const Rational& y) {
+  return x.numerator == y.numerator && x.denominator == y.denominator;  // both in lowest terms
+}
+
+/// The audit of OracleOptions::verify: the certified rational must equal the QP's.
+void audit(const char* what, const Rational& certified, const Rational& qp) {
+  if (!same(certified, qp))
+    throw CertificateMismatch(std::string("exact oracle: certified ") + what + " " +
+                              certified.numerator + "/" + certified.denominator +
+                              " differs from the QP's " + qp.numerator + "/" + qp.denominator);
+}
+
+}  // namespace
+
+OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const OracleOptions& options,
+                   const OracleHints& hints) {
   check_cloud(a, "cloud A");
   check_cloud(b, "cloud B");
-  const detail::HullSummary hull_a = detail::hull_summary(a);
-  const detail::HullSummary hull_b = detail::hull_summary(b);
-
+  Hulls hulls{a, b, std::nullopt, std::nullopt};
   OracleAnswer answer;
-  answer.hull_vertices_a = static_cast<int>(hull_a.extreme_points.size());
-  answer.hull_vertices_b = static_cast<int>(hull_b.extreme_points.size());
 
-  detail::Mpq d2;
-  squared_distance(hull_a.extreme_points, hull_b.extreme_points, d2.get());
-  answer.intersect = mpq_sgn(d2.get()) == 0;
-  answer.distance_squared = detail::to_rational(d2.get());
+  std::optional<DistanceCertificate> certificate;
+  if (options.certificates)
+    certificate = certify_distance(a, b, hints.distance.value_or(DistanceHint{}));
+  if (certificate) {
+    answer.method = AnswerMethod::certified;
+    answer.distance_squared = certificate->distance_squared;
+    answer.witness_a = certificate->witness_a;
+    answer.witness_b = certificate->witness_b;
+    if (options.verify) audit("squared distance", answer.distance_squared, qp_distance_squared(hulls));
+  } else {
+    answer.method = AnswerMethod::qp;
+    answer.distance_squared = qp_distance_squared(hulls);
+  }
+  answer.intersect = answer.distance_squared.is_zero();
   answer.distance = sqrt_to_double(answer.distance_squared);
 
   if (options.depth && answer.intersect) {
-    detail::Mpq depth2;
-    detail::penetration_depth_squared(hull_a.extreme_points, hull_b.extreme_points, depth2.get());
-    answer.depth_squared = detail::to_rational(depth2.get());
-    answer.depth = sqrt_to_double(*answer.depth_squared);
+    std::optional<Rational> depth2;
+    if (options.certificates && hints.depth) depth2 = certify_depth(a, b, *hints.depth);
+    if (depth2) {
+      answer.depth_method = AnswerMethod::certified;
+      if (options.verify) audit("squared depth", *depth2, minkowski_depth_squared(hulls));
+    } else {
+      answer.depth_method = AnswerMethod::qp;
+      depth2 = minkowski_depth_squared(hulls);
+    }
+    answer.depth_squared = *depth2;
+    answer.depth = sqrt_to_double(*depth2);
   }
+
+  answer.hull_vertices_a = options.hull_vertices ? static_cast<int>(hulls.of_a().extreme_points.size()) : -1;
+  answer.hull_vertices_b = options.hull_vertices ? static_cast<int>(hulls.of_b().extreme_points.size()) : -1;
   return answer;
 }
 

@@ -131,6 +131,15 @@ void set_double(mpq_ptr out, double x) {
   mpq_set_d(out, x);
 }  // exact for finite x
 
+double nearest_double(mpq_srcptr q) {
+  const int sign = mpq_sgn(q);
+  if (sign == 0) return 0.0;
+  detail::Mpz n;
+  mpz_abs(n.get(), mpq_numref(q));
+  const double magnitude = nearest_quotient(n.get(), mpq_denref(q));
+  return sign < 0 ? -magnitude : magnitude;
+}
+
 Rational to_rational(mpq_srcptr q) {
   Rational r;
   r.numerator = decimal(mpq_numref(q));

@@ -104,10 +104,11 @@ void check_radius(double radius, const char* name) {
 }  // namespace
 
 OracleAnswer solve_swept(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
-                         double radius_b, const OracleOptions& options) {
+                         double radius_b, const OracleOptions& options,
+                         const OracleHints& hints) {
   check_radius(radius_a, "shape A");
   check_radius(radius_b, "shape B");
-  OracleAnswer answer = solve(a, b, options);
+  OracleAnswer answer = solve(a, b, options, hints);
   if (radius_a == 0 && radius_b == 0) return answer;
 
   detail::Mpq r, rb, q;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gjklab/exact/hull_features.hpp"
+#include "gjklab/experiment/certified.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -312,11 +313,39 @@ Outcome swept_libccd_mpr_depth(const Polytope& a, const Polytope& b, const Swept
 Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
                     const AlgorithmOptions& o) {
   Outcome out;
-  exact::OracleAnswer answer = exact::solve_swept(a.vertices(), b.vertices(), r.a, r.b, o.oracle);
+  exact::OracleAnswer answer = solve_certified(a, b, r, o.oracle).answer;
   out.intersect = answer.intersect;
   out.distance = answer.distance;
   out.depth = answer.depth;
   out.exact = std::move(answer);
+  return out;
+}
+
+/// The oracle options of `gjk-certified`: its depth for every intersecting pair, no hull counts.
+exact::OracleOptions certified_query_options(const AlgorithmOptions& o) {
+  exact::OracleOptions options = o.oracle;
+  options.depth = true;
+  options.certificates = true;
+  options.hull_vertices = false;
+  return options;
+}
+
+/// `gjk-certified`: gjk-johnson (and EPA for intersecting pairs), certified exactly, with the
+/// QP as the fallback. Iterations and support calls are the double queries'.
+Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                            const AlgorithmOptions& o) {
+  CertifiedAnswer c = solve_certified(a, b, r, certified_query_options(o));
+  Outcome out;
+  out.intersect = c.answer.intersect;
+  out.distance = c.answer.distance;
+  if (c.answer.intersect) out.depth = c.answer.depth.value_or(0.0);
+  if (!r.any()) {
+    out.witness_a = c.answer.witness_a;
+    out.witness_b = c.answer.witness_b;
+  }
+  out.iterations = c.iterations;
+  out.support_calls = c.support_calls;
+  out.exact = std::move(c.answer);
   return out;
 }
 
@@ -380,7 +409,13 @@ constexpr std::array kAlgorithms = {
                   "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0",
                   run_bullet_epa2, nullptr, true, true},
 #endif
-    AlgorithmInfo{"exact", AnswerKind::exact, "exact answer from CGAL in rational arithmetic",
+    AlgorithmInfo{"gjk-certified", AnswerKind::distance,
+                  "gjk-johnson and EPA, verified by exact certificates (CGAL's QP as fallback): "
+                  "exact answers",
+                  at_zero_radii<swept_gjk_certified>, nullptr, false, true, swept_gjk_certified},
+    AlgorithmInfo{"exact", AnswerKind::exact,
+                  "exact answer in rational arithmetic: certified from gjklab's own GJK/EPA, "
+                  "CGAL's QP where no certificate holds",
                   at_zero_radii<swept_exact>, nullptr, false, true, swept_exact},
 };
 
@@ -477,6 +512,10 @@ void tally(BenchTally& t, const EpaResult& r) {
 void tally(BenchTally& t, const peers::LibccdPenetration& r) {
   count_query(t, r.iterations, r.support_calls, r.intersect);
 }
+void tally(BenchTally& t, const CertifiedAnswer& r) {
+  count_query(t, r.iterations, r.support_calls, r.answer.intersect,
+              r.answer.intersect ? 0.0 : r.answer.distance);
+}
 void tally(BenchTally& t, const peers::SatResult& r) {
   count_query(t, r.axes_tested, r.support_calls, r.intersect);
 }
@@ -564,6 +603,14 @@ BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions
   return t;
 }
 
+BenchTally bench_gjk_certified(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                               int reps) {
+  const exact::OracleOptions options = certified_query_options(o);
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return solve_certified(a, b, SweptRadii{}, options);
+  });
+}
+
 BenchTally bench_sat(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
   return prepared_bench_loop(pairs, reps, sat_shape,
                              [&](const peers::SatShape& a, const peers::SatShape& b) {
@@ -607,6 +654,7 @@ constexpr std::array kBenchLoops = {
     NamedBenchLoop{"libccd-mpr", bench_libccd_mpr},
     NamedBenchLoop{"libccd-gjk-epa", bench_libccd_gjk_epa},
     NamedBenchLoop{"libccd-mpr-depth", bench_libccd_mpr_depth},
+    NamedBenchLoop{"gjk-certified", bench_gjk_certified},
 #ifdef GJKLAB_HAVE_FCL
     NamedBenchLoop{"fcl-libccd", bench_fcl<peers::FclSolver::libccd>},
     NamedBenchLoop{"fcl-indep", bench_fcl<peers::FclSolver::indep>},

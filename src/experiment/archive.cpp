@@ -99,7 +99,7 @@ std::vector<T> gather(std::span<const CaseResult> results, F field) {
 
 // The HDF5 types of the archive, shared by the writer and the reader.
 struct Types {
-  h5::Handle boolean, string, shape, placement, contact, termination, failure, step;
+  h5::Handle boolean, string, shape, placement, contact, termination, failure, step, method;
 
   explicit Types(const h5::Context& cx)
       : boolean(h5::bool_type(cx)),
@@ -109,7 +109,8 @@ struct Types {
         contact(h5::enum_type<ContactClass>(cx)),
         termination(h5::enum_type<Termination>(cx)),
         failure(h5::enum_type<FailureClass>(cx)),
-        step(h5::enum_type<GjkStep>(cx)) {}
+        step(h5::enum_type<GjkStep>(cx)),
+        method(h5::enum_type<exact::AnswerMethod>(cx)) {}
 };
 
 }  // namespace
@@ -123,7 +124,7 @@ struct ArchiveWriter::Impl {
   };
   struct ExactColumns {
     h5::Column intersect, distance, distance2_num, distance2_den, depth, hull_vertices_a,
-        hull_vertices_b, contact;
+        hull_vertices_b, contact, method, depth_method;
   };
   struct AlgorithmColumns {
     h5::Column intersect, distance, abs_error, rel_error, boolean_correct, iterations,
@@ -160,7 +161,8 @@ struct ArchiveWriter::Impl {
       if (exact)
         all.insert(all.end(), {&exact->intersect, &exact->distance, &exact->distance2_num,
                                &exact->distance2_den, &exact->depth, &exact->hull_vertices_a,
-                               &exact->hull_vertices_b, &exact->contact});
+                               &exact->hull_vertices_b, &exact->contact, &exact->method,
+                               &exact->depth_method});
       for (AlgorithmColumns& a : algorithms)
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
@@ -290,6 +292,8 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
         column(gi, p, "hull_vertices_a", i32f, i32m, chunk),
         column(gi, p, "hull_vertices_b", i32f, i32m, chunk),
         column(gi, p, "contact", t.contact.get(), t.contact.get(), chunk),
+        column(gi, p, "method", t.method.get(), t.method.get(), chunk),
+        column(gi, p, "depth_method", t.method.get(), t.method.get(), chunk),
     };
   }
   {
@@ -393,6 +397,9 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     e.hull_vertices_b.append(
         cx, gather<std::int32_t>(rs, [](R r) { return r.exact->hull_vertices_b; }));
     e.contact.append(cx, gather<ContactClass>(rs, [](R r) { return r.exact->contact; }));
+    e.method.append(cx, gather<exact::AnswerMethod>(rs, [](R r) { return r.exact->method; }));
+    e.depth_method.append(
+        cx, gather<exact::AnswerMethod>(rs, [](R r) { return r.exact->depth_method; }));
   }
   for (std::size_t i = 0; i < c.algorithms.size(); ++i) {
     AlgorithmColumns& a = c.algorithms[i];
@@ -761,6 +768,10 @@ Archive read_archive(const fs::path& path) {
     const auto hull_a = h5::read_column<std::int32_t>(cx, gi, p, "hull_vertices_a", i32m, n);
     const auto hull_b = h5::read_column<std::int32_t>(cx, gi, p, "hull_vertices_b", i32m, n);
     const auto contact = h5::read_column<ContactClass>(cx, gi, p, "contact", t.contact.get(), n);
+    const auto method =
+        h5::read_column<exact::AnswerMethod>(cx, gi, p, "method", t.method.get(), n);
+    const auto depth_method =
+        h5::read_column<exact::AnswerMethod>(cx, gi, p, "depth_method", t.method.get(), n);
     for (std::size_t i = 0; i < n; ++i) {
       ExactRecord& e = a.results[i].exact.emplace();
       e.intersect = intersect[i] != 0;
@@ -771,6 +782,8 @@ Archive read_archive(const fs::path& path) {
       e.hull_vertices_a = hull_a[i];
       e.hull_vertices_b = hull_b[i];
       e.contact = contact[i];
+      e.method = method[i];
+      e.depth_method = depth_method[i];
     }
   }
   {

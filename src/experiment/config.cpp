@@ -899,9 +899,17 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
 
   if (const toml::table* t = top.subtable("oracle")) {
     const Section oracle = top.child(*t, "oracle");
-    oracle.allow_only({"enabled", "depth"});
+    oracle.allow_only({"enabled", "depth", "certificates", "verify", "hull_vertices"});
     if (const auto enabled = oracle.boolean("enabled")) config.oracle = *enabled;
     if (const auto depth = oracle.boolean("depth")) config.depth = *depth;
+    if (const auto certificates = oracle.boolean("certificates"))
+      config.certificates = *certificates;
+    if (const auto verify = oracle.boolean("verify")) config.verify = *verify;
+    if (const auto hull_vertices = oracle.boolean("hull_vertices"))
+      config.hull_vertices = *hull_vertices;
+    if (config.verify && !config.certificates)
+      oracle.fail(*oracle.find("verify"), "verify",
+                  "audits the certificates, which are off (certificates = false)");
     if (config.depth && !config.oracle)
       oracle.fail(*oracle.find("depth"), "depth", "needs the oracle (enabled = true)");
   }
@@ -943,7 +951,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     const toml::table& t = *algorithms->get(i)->as_table();
     const Section s = top.child(t, "algorithm[" + std::to_string(i) + "]");
     AlgorithmSpec spec = read_algorithm(s);
-    spec.options.oracle.depth = config.depth;
+    spec.options.oracle = config.oracle_options(config.depth);
     if (config.has_swept_shapes() && !find_algorithm(spec.name)->run_swept)
       s.fail(*s.find("name"), "name",
              "'" + spec.name +

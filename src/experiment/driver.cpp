@@ -14,6 +14,7 @@
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/certified.hpp"
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/provenance.hpp"
 
@@ -48,6 +49,8 @@ ExactRecord exact_record(const exact::OracleAnswer& a, double band) {
   r.hull_vertices_a = a.hull_vertices_a;
   r.hull_vertices_b = a.hull_vertices_b;
   r.contact = classify(a, band);
+  r.method = a.method;
+  r.depth_method = a.depth_method;
   return r;
 }
 
@@ -181,8 +184,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     const bool depth_algorithm =
         std::any_of(config.algorithms.begin(), config.algorithms.end(),
                     [](const AlgorithmSpec& s) { return find_algorithm(s.name)->depth; });
-    answer = exact::solve_swept(a.vertices(), b.vertices(), radii.a, radii.b,
-                                {.depth = config.depth || depth_algorithm});
+    answer = solve_certified(a, b, radii, config.oracle_options(config.depth || depth_algorithm))
+                 .answer;
     result.exact = exact_record(*answer, band);
   }
   std::vector<Outcome> outcomes;
@@ -204,7 +207,7 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
           return !r.intersect && r.termination != Termination::step_limit;
         });
     if (disagreement) {
-      answer = exact::solve_swept(a.vertices(), b.vertices(), radii.a, radii.b, {.depth = true});
+      answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
       result.exact = exact_record(*answer, band);
       for (std::size_t i = 0; i < outcomes.size(); ++i) {
         const double time_ns = result.algorithms[i].time_ns;

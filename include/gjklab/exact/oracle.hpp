@@ -9,8 +9,10 @@
 
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 
+#include "gjklab/exact/hint.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab::exact {
@@ -28,9 +30,30 @@ struct Rational {
 double sqrt_to_double(const Rational& r);
 
 struct OracleOptions {
-  /// Also compute the exact squared penetration depth of intersecting pairs. This builds the
-  /// exact hull of the Minkowski difference (|A|·|B| points) and is much slower.
+  /// Also compute the exact squared penetration depth of intersecting pairs: certified from a
+  /// depth hint when one is given and holds, otherwise from the exact hull of the Minkowski
+  /// difference (|A|·|B| points, much slower).
   bool depth = false;
+  /// Try the certificates (certificate.hpp) before the QP. Off: the QP answers every pair.
+  bool certificates = true;
+  /// Audit mode: also solve every certified pair by the QP (and the Minkowski hull) and throw
+  /// CertificateMismatch if the two rationals differ.
+  bool verify = false;
+  /// Count each cloud's hull vertices (an exact hull of each cloud: costlier than a
+  /// certificate). Off: the counts are −1.
+  bool hull_vertices = true;
+};
+
+/// Floating-point answers that the certificates verify (see hint.hpp); both optional.
+struct OracleHints {
+  std::optional<DistanceHint> distance;
+  std::optional<DepthHint> depth;
+};
+
+/// Thrown by the audit mode (OracleOptions::verify) when a certified rational differs from the
+/// QP's: a bug in a certificate, never an answer.
+struct CertificateMismatch : std::logic_error {
+  using std::logic_error::logic_error;
 };
 
 struct OracleAnswer {
@@ -42,6 +65,7 @@ struct OracleAnswer {
   double distance = 0;
   /// Number of vertices of each cloud's convex hull (1 for a point, 2 for a segment, the
   /// polygon's corner count for a flat cloud); duplicates and interior points do not count.
+  /// −1 when not computed (OracleOptions::hull_vertices off).
   int hull_vertices_a = 0;
   int hull_vertices_b = 0;
   /// With OracleOptions::depth and intersect: the exact squared penetration depth, i.e. the
@@ -53,13 +77,24 @@ struct OracleAnswer {
   /// Answered by solve_swept for non-zero radii: intersect, distance and depth are the swept
   /// shapes', while distance_squared, depth_squared and the hull counts stay the cores'.
   bool swept = false;
+  /// Certified path only (else empty): the exact closest points of the hulls, p ∈ conv(A) and
+  /// q ∈ conv(B) with ‖p − q‖² = distance_squared (a common point when intersecting), each
+  /// coordinate rounded to the nearest double. The cores' points for swept shapes.
+  std::optional<Vec3> witness_a, witness_b;
+  /// How distance_squared (and intersect) was obtained.
+  AnswerMethod method = AnswerMethod::qp;
+  /// How depth_squared was obtained (`none` when it is absent).
+  AnswerMethod depth_method = AnswerMethod::none;
 };
 
 /// Solves the pair exactly. Throws std::invalid_argument (gjklab::InvalidGeometry) for an
 /// empty cloud or a non-finite coordinate; the message names which cloud, e.g.
 /// "cloud B: non-finite coordinate in point 3".
+/// With certificates on, the distance is first certified from `hints.distance` (exact GJK
+/// from the pair (0, 0) without one), the depth from `hints.depth`; the QP answers whatever no
+/// certificate proves. Either way the rationals are the same.
 OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b,
-                   const OracleOptions& options = {});
+                   const OracleOptions& options = {}, const OracleHints& hints = {});
 
 /// Solves a pair of sphere-swept shapes: the hull of cloud a swept by a ball of radius_a, and
 /// likewise b (length units, each finite and >= 0; a single point and a radius make a sphere,
@@ -73,7 +108,8 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b,
 /// swept answers are irrational in general). With both radii 0 this is solve(a, b, options).
 /// Throws std::invalid_argument as solve does, and for a negative or non-finite radius.
 OracleAnswer solve_swept(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
-                         double radius_b, const OracleOptions& options = {});
+                         double radius_b, const OracleOptions& options = {},
+                         const OracleHints& hints = {});
 
 /// Number of vertices of the convex hull of one cloud (see OracleAnswer::hull_vertices_a),
 /// decided with exact predicates. Throws std::invalid_argument for an empty cloud or a

@@ -24,7 +24,7 @@
 
 namespace gjklab::experiment {
 
-inline constexpr int kArchiveSchemaVersion = 1;
+inline constexpr int kArchiveSchemaVersion = 2;
 
 class ArchiveError : public std::runtime_error {
  public:

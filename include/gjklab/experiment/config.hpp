@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/records.hpp"
 
@@ -120,6 +121,15 @@ struct ExperimentConfig {
   std::string output;  ///< archive path, relative to the working directory
   bool oracle = true;  ///< run the exact oracle (needed for errors and booleans' correctness)
   bool depth = false;  ///< also compute exact penetration depth of intersecting pairs
+  /// [oracle] certificates: verify gjklab's own GJK/EPA answers exactly before falling back
+  /// to the QP (the same rationals, much faster). Off: the QP answers every case.
+  bool certificates = true;
+  /// [oracle] verify: also solve every certified case by the QP and stop with an error if the
+  /// rationals differ (the audit mode).
+  bool verify = false;
+  /// [oracle] hull_vertices: count each cloud's hull vertices (an exact hull per cloud, costlier
+  /// than a certificate); the archive holds −1 otherwise.
+  bool hull_vertices = false;
   double touching_band = 1e-10;  ///< relative to size: exact answers this close count as touching
   /// Which queries keep a per-iteration trace in the archive: "none", "failing" (failure
   /// class other than none) or "all". Only GJK algorithms can be traced.
@@ -135,6 +145,13 @@ struct ExperimentConfig {
   /// Rows of the run: cases × the number of geometry-sweep values.
   std::uint64_t total_cases() const {
     return cases * (geometry_sweep ? geometry_sweep->values.size() : 1);
+  }
+  /// The oracle's options for a case: depth when `depth_wanted`, the rest from [oracle].
+  exact::OracleOptions oracle_options(bool depth_wanted) const {
+    return {.depth = depth_wanted,
+            .certificates = certificates,
+            .verify = verify,
+            .hull_vertices = hull_vertices};
   }
   /// Whether any family has sphere-swept shapes (a radius).
   bool has_swept_shapes() const;

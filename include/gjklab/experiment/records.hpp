@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "gjklab/exact/hint.hpp"
 #include "gjklab/geometry/types.hpp"
 #include "gjklab/gjk/termination.hpp"
 #include "gjklab/gjk/trace.hpp"
@@ -106,9 +107,13 @@ struct ExactRecord {
   std::string distance2_num = "0";  ///< exact squared distance as a decimal rational
   std::string distance2_den = "1";
   double depth = std::numeric_limits<double>::quiet_NaN();  ///< NaN unless computed
-  std::int32_t hull_vertices_a = 0;
+  std::int32_t hull_vertices_a = 0;  ///< −1 when not computed ([oracle] hull_vertices)
   std::int32_t hull_vertices_b = 0;
   ContactClass contact = ContactClass::separated;
+  /// How the squared distance was obtained: certified from a hint, or by the QP.
+  exact::AnswerMethod method = exact::AnswerMethod::qp;
+  /// How the depth was obtained (`none` when it was not computed).
+  exact::AnswerMethod depth_method = exact::AnswerMethod::none;
 };
 
 /// One algorithm's answer for a case, with its error against the exact answer.
