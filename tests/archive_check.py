@@ -15,6 +15,7 @@ SHAPES = {"sphere_points": 0, "ball_points": 1, "cube_points": 2, "gaussian": 3,
           "capsule": 18}
 PLACEMENTS = {"separated": 0, "overlapping": 1, "random": 2, "touching": 3, "as_given": 4}
 CONTACTS = {"separated": 0, "touching_band": 1, "intersecting": 2}
+METHODS = {"certified": 0, "qp": 1, "none": 2}
 TERMINATIONS = {"converged": 0, "step_limit": 1, "no_progress": 2, "degenerate_simplex": 3,
                 "cycling": 4, "numerical_failure": 5, "invalid_input": 6}
 
@@ -24,7 +25,7 @@ CASES = {"case_id": np.uint64, "family": np.uint32, "shape_a": SHAPES, "shape_b"
          "radius_a": np.float64, "radius_b": np.float64}
 EXACT = {"intersect": bool, "distance": np.float64, "distance2_num": str, "distance2_den": str,
          "depth": np.float64, "hull_vertices_a": np.int32, "hull_vertices_b": np.int32,
-         "contact": CONTACTS}
+         "contact": CONTACTS, "method": METHODS, "depth_method": METHODS}
 FAILURES = {"none": 0, "touching_band": 1, "step_limit": 2, "no_progress": 3,
             "degenerate_simplex": 4, "cycling": 5, "non_finite": 6, "wrong_boolean": 7,
             "distance_error": 8}
@@ -69,7 +70,7 @@ def check_group(group, columns, rows):
 def main(path):
     with h5py.File(path, "r") as f:
         a = f.attrs
-        assert a["schema_version"] == 1 and a["schema_version"].dtype == np.int32
+        assert a["schema_version"] == 2 and a["schema_version"].dtype == np.int32
         for key in ("experiment_name", "experiment_text", "start_time", "end_time",
                     "gjklab_version", "git_commit", "compiler", "hdf5_version"):
             assert isinstance(a[key], str), f"attribute {key} is {type(a[key])}"

@@ -152,6 +152,11 @@ int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream
       experiment::print_family_table(out, by_family.build());
     }
     out << kept << " cases keep their geometry (wrong or not converged)\n";
+    if (h.oracle) {
+      out << "\nexact answers (certified, or by the QP):\n";
+      experiment::print_oracle_methods(
+          out, experiment::oracle_method_counts(archive.results, h.family_names));
+    }
     return 0;
   } catch (const std::exception& e) {
     err << "gjklab inspect: " << e.what() << "\n";

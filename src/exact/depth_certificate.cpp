@@ -141,9 +141,25 @@ bool is_convex(const std::vector<PolytopeFace>& faces, const std::vector<Polytop
   return true;
 }
 
+/// n/‖n‖ for an integer vector n ≠ 0, in doubles (components scaled to a common exponent
+/// first, so that no intermediate overflows).
+Vec3 unit_direction(const IntVec& n) {
+  std::array<long, 3> e{};
+  std::array<double, 3> m{};
+  long top = -(1L << 40);
+  for (int i = 0; i < 3; ++i) {
+    m[i] = mpz_get_d_2exp(&e[i], n[i].get_mpz_t());
+    if (m[i] != 0) top = std::max(top, e[i]);
+  }
+  Vec3 d;
+  for (int i = 0; i < 3; ++i)
+    d[i] = m[i] == 0 ? 0.0 : std::ldexp(m[i], static_cast<int>(std::max(e[i] - top, -2000L)));
+  return d.normalized();
+}
+
 }  // namespace
 
-std::optional<Rational> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
+std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
                                       const DepthHint& hint) {
   if (a.empty() || b.empty() || hint.faces.size() < 4) return std::nullopt;
   const detail::IntegerFrame frame = detail::integer_frame(a, b);
@@ -193,7 +209,10 @@ std::optional<Rational> certify_depth(std::span<const Vec3> a, std::span<const V
   const long e = frame.exponent;
   if (e > 0) mpq_mul_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(2 * e));
   if (e < 0) mpq_div_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(-2 * e));
-  return detail::to_rational(depth2.get());
+  DepthCertificate out;
+  out.depth_squared = detail::to_rational(depth2.get());
+  out.normal = unit_direction(f.normal);
+  return out;
 }
 
 }  // namespace gjklab::exact

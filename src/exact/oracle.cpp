@@ -141,9 +141,12 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
 
   if (options.depth && answer.intersect) {
     std::optional<Rational> depth2;
-    if (options.certificates && hints.depth) depth2 = certify_depth(a, b, *hints.depth);
-    if (depth2) {
+    std::optional<DepthCertificate> certificate;
+    if (options.certificates && hints.depth) certificate = certify_depth(a, b, *hints.depth);
+    if (certificate) {
+      depth2 = certificate->depth_squared;
       answer.depth_method = AnswerMethod::certified;
+      answer.depth_normal = certificate->normal;
       if (options.verify) audit("squared depth", *depth2, minkowski_depth_squared(hulls));
     } else {
       answer.depth_method = AnswerMethod::qp;

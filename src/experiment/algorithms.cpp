@@ -330,6 +330,16 @@ exact::OracleOptions certified_query_options(const AlgorithmOptions& o) {
   return options;
 }
 
+/// The direction in which B must move by the depth: the certified face normal; for swept
+/// shapes whose cores are apart, the direction between the cores' exact closest points; else
+/// EPA's normal (depth by the QP), or x when A − B has no interior and EPA did not run.
+Vec3 certified_normal(const CertifiedAnswer& c) {
+  if (c.answer.depth_normal) return *c.answer.depth_normal;
+  if (c.answer.witness_a && c.answer.witness_b && *c.answer.witness_a != *c.answer.witness_b)
+    return (*c.answer.witness_b - *c.answer.witness_a).normalized();
+  return c.epa_normal.value_or(Vec3::UnitX());
+}
+
 /// `gjk-certified`: gjk-johnson (and EPA for intersecting pairs), certified exactly, with the
 /// QP as the fallback. Iterations and support calls are the double queries'.
 Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRadii& r,
@@ -338,7 +348,10 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
   Outcome out;
   out.intersect = c.answer.intersect;
   out.distance = c.answer.distance;
-  if (c.answer.intersect) out.depth = c.answer.depth.value_or(0.0);
+  if (c.answer.intersect) {
+    out.depth = c.answer.depth.value_or(0.0);
+    out.normal = certified_normal(c);
+  }
   if (!r.any()) {
     out.witness_a = c.answer.witness_a;
     out.witness_b = c.answer.witness_b;

@@ -45,6 +45,7 @@ CertifiedAnswer solve_certified(const Polytope& a, const Polytope& b, const Swep
       const EpaResult epa = epa_from_gjk(a, b, gjk, EpaOptions{}, workspace);
       out.iterations += epa.iterations;
       out.support_calls = epa.support_calls;  // counts GJK's too
+      out.epa_normal = epa.normal;
       if (epa.faces > 0) hints.depth = depth_hint(workspace);
     }
   }

@@ -182,4 +182,48 @@ void print_family_table(std::ostream& out,
   }
 }
 
+std::vector<OracleMethodCounts> oracle_method_counts(std::span<const CaseResult> results,
+                                                     const std::vector<std::string>& family_names) {
+  std::vector<OracleMethodCounts> counts(family_names.size());
+  for (std::size_t i = 0; i < family_names.size(); ++i)
+    counts[i].family = family_names[i];
+  for (const CaseResult& r : results) {
+    if (!r.exact || r.record.family >= counts.size()) continue;
+    OracleMethodCounts& c = counts[r.record.family];
+    ++c.cases;
+    c.certified += r.exact->method == exact::AnswerMethod::certified;
+    c.depths += r.exact->depth_method != exact::AnswerMethod::none;
+    c.depths_certified += r.exact->depth_method == exact::AnswerMethod::certified;
+  }
+  std::erase_if(counts, [](const OracleMethodCounts& c) { return c.cases == 0; });
+  return counts;
+}
+
+void print_oracle_methods(std::ostream& out, const std::vector<OracleMethodCounts>& families) {
+  auto percent = [](std::uint64_t part, std::uint64_t whole) {
+    return whole ? format("%.2f%%", 100.0 * static_cast<double>(part) / static_cast<double>(whole))
+                 : std::string("-");
+  };
+  char line[256];
+  std::snprintf(line, sizeof line, "%-24s %7s %10s %7s %10s\n", "family", "cases", "certified",
+                "depths", "certified");
+  out << line;
+  OracleMethodCounts total{"all"};
+  auto row = [&](const OracleMethodCounts& c) {
+    std::snprintf(line, sizeof line, "%-24s %7llu %10s %7llu %10s\n", c.family.c_str(),
+                  static_cast<unsigned long long>(c.cases), percent(c.certified, c.cases).c_str(),
+                  static_cast<unsigned long long>(c.depths),
+                  percent(c.depths_certified, c.depths).c_str());
+    out << line;
+  };
+  for (const OracleMethodCounts& c : families) {
+    row(c);
+    total.cases += c.cases;
+    total.certified += c.certified;
+    total.depths += c.depths;
+    total.depths_certified += c.depths_certified;
+  }
+  if (families.size() > 1) row(total);
+}
+
 }  // namespace gjklab::experiment

@@ -211,12 +211,14 @@ TEST_CASE("every algorithm that handles sphere-swept shapes answers the closed f
       CHECK(o.termination == Termination::converged);
       CHECK(o.intersect == c.intersect);
       if (o.distance) CHECK(std::abs(*o.distance - c.distance) <= kTolerance);
-      const bool exact_depth = algorithm.kind == AnswerKind::exact || algorithm.name == "epa";
+      const bool exact_depth = algorithm.kind == AnswerKind::exact || algorithm.name == "epa" ||
+                               algorithm.name == "gjk-certified";
       if (c.intersect && o.depth && exact_depth) CHECK(std::abs(*o.depth - c.depth) <= kTolerance);
     }
   }
-  // gjk-bool, the five GJK distance variants, epa, four libccd queries and the oracle.
-  CHECK(algorithms_run == 12);
+  // gjk-bool, the five GJK distance variants, epa, four libccd queries, gjk-certified and
+  // the oracle.
+  CHECK(algorithms_run == 13);
 }
 
 TEST_CASE("swept witnesses and normals keep the penetration conventions", "[unit][swept]") {

@@ -57,9 +57,16 @@ std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
                                                     const DistanceHint& hint,
                                                     int max_steps = kCertificateMaxSteps);
 
+struct DepthCertificate {
+  Rational depth_squared;  ///< exact, in lowest terms
+  /// The outward unit normal of the supporting face plane that realises the depth (the
+  /// direction in which B must move by the depth), rounded: each coordinate within a few ulps.
+  Vec3 normal = Vec3::UnitX();
+};
+
 /// Certifies the squared penetration depth of an intersecting pair from an EPA polytope;
 /// nullopt when any check fails (the caller then falls back to the Minkowski hull).
-std::optional<Rational> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
+std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
                                       const DepthHint& hint);
 
 }  // namespace gjklab::exact

@@ -81,6 +81,9 @@ struct OracleAnswer {
   /// q ∈ conv(B) with ‖p − q‖² = distance_squared (a common point when intersecting), each
   /// coordinate rounded to the nearest double. The cores' points for swept shapes.
   std::optional<Vec3> witness_a, witness_b;
+  /// Certified depth only (else empty): the outward unit normal of the face of A − B nearest
+  /// the origin, i.e. the direction in which B must move by the depth (rounded).
+  std::optional<Vec3> depth_normal;
   /// How distance_squared (and intersect) was obtained.
   AnswerMethod method = AnswerMethod::qp;
   /// How depth_squared was obtained (`none` when it is absent).

@@ -4,6 +4,8 @@
 // registry's `exact` and by `gjk-certified`.
 #pragma once
 
+#include <optional>
+
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/swept.hpp"
@@ -15,6 +17,9 @@ struct CertifiedAnswer {
   exact::OracleAnswer answer;
   int iterations = 0;     ///< GJK's iterations, plus EPA's when it ran
   int support_calls = 0;  ///< both queries' support calls
+  /// EPA's unit normal for an intersecting pair when EPA ran (the certified normal, when the
+  /// depth was certified, is answer.depth_normal).
+  std::optional<Vec3> epa_normal;
 };
 
 /// Runs gjk-johnson (default options) on the pair's cores and, when options.depth is set and

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,5 +76,22 @@ class FamilySummaryBuilder {
 /// error relative to size, and every termination other than converged.
 void print_family_table(std::ostream& out,
                         const std::vector<std::pair<std::string, RunSummary>>& families);
+
+/// How one family's exact answers were obtained (see ExactRecord::method and depth_method).
+struct OracleMethodCounts {
+  std::string family;
+  std::uint64_t cases = 0;             ///< cases with an exact answer
+  std::uint64_t certified = 0;         ///< distances certified (the rest by the QP)
+  std::uint64_t depths = 0;            ///< exact depths computed
+  std::uint64_t depths_certified = 0;  ///< of those, certified (the rest by the Minkowski hull)
+};
+
+/// Counts of the oracle's methods, one entry per family (index = CaseRecord::family) that has
+/// at least one exact answer.
+std::vector<OracleMethodCounts> oracle_method_counts(std::span<const CaseResult> results,
+                                                     const std::vector<std::string>& family_names);
+
+/// Prints one row per family: cases, certified fraction of distances and of depths, and a total.
+void print_oracle_methods(std::ostream& out, const std::vector<OracleMethodCounts>& families);
 
 }  // namespace gjklab::experiment
