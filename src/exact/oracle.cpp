@@ -125,7 +125,8 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
 
   std::optional<DistanceCertificate> certificate;
   if (options.certificates)
-    certificate = certify_distance(a, b, hints.distance.value_or(DistanceHint{}));
+    certificate = certify_distance(a, b, hints.distance.value_or(DistanceHint{}),
+                                   options.certificate_steps);
   if (certificate) {
     answer.method = AnswerMethod::certified;
     answer.distance_squared = certificate->distance_squared;

@@ -32,9 +32,6 @@
 
 namespace gjklab::exact {
 
-/// Steps of exact GJK a distance certificate may take beyond its hint before giving up.
-inline constexpr int kCertificateMaxSteps = 64;
-
 struct DistanceCertificate {
   bool intersect = false;
   Rational distance_squared;  ///< exact, in lowest terms (0 when intersecting)

@@ -29,6 +29,9 @@ struct Rational {
 /// Returns the double nearest to √(num/den) (correctly rounded).
 double sqrt_to_double(const Rational& r);
 
+/// Steps of exact GJK a distance certificate may take beyond its hint before the QP takes over.
+inline constexpr int kCertificateMaxSteps = 64;
+
 struct OracleOptions {
   /// Also compute the exact squared penetration depth of intersecting pairs: certified from a
   /// depth hint when one is given and holds, otherwise from the exact hull of the Minkowski
@@ -36,6 +39,9 @@ struct OracleOptions {
   bool depth = false;
   /// Try the certificates (certificate.hpp) before the QP. Off: the QP answers every pair.
   bool certificates = true;
+  /// Exact GJK steps the distance certificate may take beyond its hint (0: the hint's own
+  /// simplex must be the closest feature).
+  int certificate_steps = kCertificateMaxSteps;
   /// Audit mode: also solve every certified pair by the QP (and the Minkowski hull) and throw
   /// CertificateMismatch if the two rationals differ.
   bool verify = false;
