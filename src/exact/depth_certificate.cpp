@@ -1,15 +1,17 @@
 // The penetration-depth certificate: an EPA polytope checked exactly (see certificate.hpp).
 // No CGAL here.
 //
-// Why the checks suffice. Let P be the hull of the hint's vertices (points of A − B, so
-// P ⊂ A − B) and S the union of its triangles. If S is a closed surface (every directed edge
-// matched by its reverse, every vertex's triangles one fan) and every vertex lies on or behind
-// every triangle's plane, S lies on the boundary of the intersection H of those half-spaces,
-// which is then a convex body whose whole boundary S is: H = P and the triangles' planes are
-// P's facet planes. With the origin on or behind each of them, the distance from the origin
-// to P's boundary is min over faces of c_f/‖n_f‖; since P ⊂ A − B, the depth is at least that.
-// A plane n·x = c that supports A − B bounds the depth from above by c/‖n‖, so equality at the
-// nearest face proves depth² = c²/‖n‖².
+// Why the checks suffice. Let P be the hull of the vertices the faces use (points of A − B, so
+// P ⊂ A − B). Every used vertex lies on or behind every triangle's plane and some vertex
+// strictly behind it, so each triangle lies in a facet of P and faces outward, and P is
+// three-dimensional. Every directed edge is matched by its reverse, so the triangles form a
+// 2-cycle on the sphere ∂P, which covers every point of ∂P the same number of times d ≥ 1:
+// every facet of P holds a triangle, and the triangles' planes are exactly P's facet planes.
+// (The fan, Euler and distinct-vertex checks further make the covering single, d = 1.) With
+// the origin on or behind each plane, it lies in P, and the distance from it to P's boundary
+// is min over faces of c_f/‖n_f‖; since P ⊂ A − B the depth is at least that. A plane n·x = c
+// that supports A − B bounds the depth from above by c/‖n‖, so equality at the nearest face
+// proves depth² = c²/‖n‖² (including depth 0, c = 0).
 #include <gmp.h>
 
 #include <algorithm>
@@ -50,8 +52,9 @@ struct PolytopeFace {
 /// The sign of normal_f · (x − p0) for a vertex x of the polytope, decided by a filter on
 /// the doubles and exactly when the filter cannot tell. The filter evaluates the orientation
 /// determinant det[p1 − p0, p2 − p0, x − p0] from the rounded points; with every coordinate
-/// of the exact points at most m in magnitude, its error is below 460u·m³ (input rounding
-/// 290u·m³, arithmetic 170u·m³), and the filter uses 1024u·m³ plus an underflow margin.
+/// of the exact points at most m in magnitude, its error is below 530u·m³ (input rounding
+/// 290u·m³, arithmetic γ5·6·(2m)³ ≈ 240u·m³), and the filter uses 1024u·m³ plus an underflow
+/// margin (2^-1000, which covers the underflow terms for m ≤ 2^70, the m³ term above that).
 int side_of_face(const PolytopeFace& f, const std::vector<PolytopeVertex>& p, int x, double m) {
   const Vec3& p0 = p[f.v[0]].approx;
   const Vec3 d1 = p[f.v[1]].approx - p0, d2 = p[f.v[2]].approx - p0, d3 = p[x].approx - p0;
@@ -157,13 +160,22 @@ Vec3 unit_direction(const IntVec& n) {
   return d.normalized();
 }
 
-}  // namespace
+/// A hint's polytope once every check of the certificate has passed.
+struct CheckedPolytope {
+  std::vector<PolytopeVertex> vertices;
+  std::vector<PolytopeFace> faces;
+};
 
-std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
-                                      const DepthHint& hint) {
-  if (a.empty() || b.empty() || hint.faces.size() < 4) return std::nullopt;
-  const detail::IntegerFrame frame = detail::integer_frame(a, b);
-  const auto vertices = polytope_vertices(a, b, hint, frame.exponent);
+/// The hint's polytope if it is closed, convex, made of distinct points of A − B, and holds
+/// the origin on or behind every face plane; nullopt otherwise.
+std::optional<CheckedPolytope> checked_polytope(std::span<const Vec3> a, std::span<const Vec3> b,
+                                                const DepthHint& hint, long exponent) {
+  // The checks cost O(V² + F·V): a polytope larger than any EPA run builds is not a hint.
+  constexpr std::size_t kMaxHintVertices = 4096;
+  if (hint.faces.size() < 4 || hint.vertices.size() > kMaxHintVertices ||
+      hint.faces.size() > 2 * kMaxHintVertices)
+    return std::nullopt;
+  auto vertices = polytope_vertices(a, b, hint, exponent);
   if (!vertices) return std::nullopt;
   std::vector<bool> used(vertices->size(), false);
   for (const auto& t : hint.faces)
@@ -172,47 +184,107 @@ std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span
       used[v] = true;
     }
   if (!is_closed_sphere(hint.faces, vertices->size())) return std::nullopt;
-
-  std::vector<PolytopeFace> faces;
-  faces.reserve(hint.faces.size());
+  CheckedPolytope p{std::move(*vertices), {}};
+  p.faces.reserve(hint.faces.size());
   for (const auto& t : hint.faces) {
     PolytopeFace f;
     f.v = t;
-    const IntVec& p0 = (*vertices)[t[0]].exact;
-    f.normal = cross((*vertices)[t[1]].exact - p0, (*vertices)[t[2]].exact - p0);
+    const IntVec& p0 = p.vertices[t[0]].exact;
+    f.normal = cross(p.vertices[t[1]].exact - p0, p.vertices[t[2]].exact - p0);
     if (detail::is_zero(f.normal)) return std::nullopt;
     f.offset = dot(f.normal, p0);
     if (sgn(f.offset) < 0) return std::nullopt;  // the origin is in front of this face
-    faces.push_back(std::move(f));
+    p.faces.push_back(std::move(f));
   }
-  if (!is_convex(faces, *vertices, used)) return std::nullopt;
+  if (!is_convex(p.faces, p.vertices, used)) return std::nullopt;
+  return p;
+}
 
-  // The nearest face plane: least c²/‖n‖², compared exactly by cross-multiplication.
+/// The face whose plane is nearest the origin: least c²/‖n‖², compared exactly.
+std::size_t nearest_face(const std::vector<PolytopeFace>& faces) {
   std::size_t nearest = 0;
-  std::vector<Int> c2(faces.size()), n2(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    c2[f] = faces[f].offset * faces[f].offset;
-    n2[f] = dot(faces[f].normal, faces[f].normal);
-    if (f > 0 && c2[f] * n2[nearest] < c2[nearest] * n2[f]) nearest = f;
+  Int c2_best = faces[0].offset * faces[0].offset, n2_best = dot(faces[0].normal, faces[0].normal);
+  for (std::size_t f = 1; f < faces.size(); ++f) {
+    Int c2 = faces[f].offset * faces[f].offset, n2 = dot(faces[f].normal, faces[f].normal);
+    if (c2 * n2_best < c2_best * n2) {
+      nearest = f;
+      c2_best = std::move(c2);
+      n2_best = std::move(n2);
+    }
   }
-  // Its plane must support A − B: max over a of n·A − min over b of n·B = c.
-  const PolytopeFace& f = faces[nearest];
-  const detail::Extreme high = detail::extreme_point(a, f.normal, frame, true);
-  const detail::Extreme low = detail::extreme_point(b, f.normal, frame, false);
-  if (high.value - low.value != f.offset) return std::nullopt;
+  return nearest;
+}
 
-  // depth² = c²/‖n‖² in frame units²: c has units 2^(3e) and n 2^(2e), so ×4^e.
-  detail::Mpq depth2;
-  mpq_set_num(depth2.get(), c2[nearest].get_mpz_t());
-  mpq_set_den(depth2.get(), n2[nearest].get_mpz_t());
-  mpq_canonicalize(depth2.get());
-  const long e = frame.exponent;
-  if (e > 0) mpq_mul_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(2 * e));
-  if (e < 0) mpq_div_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(-2 * e));
-  DepthCertificate out;
-  out.depth_squared = detail::to_rational(depth2.get());
-  out.normal = unit_direction(f.normal);
+/// One exact EPA step, as a new hint: the polytope's hull with the point `next` (which lies
+/// beyond at least one face): the faces that `next` sees strictly are replaced by the cone from
+/// their horizon to `next`. The result is checked again like any hint.
+DepthHint expanded(const DepthHint& hint, const CheckedPolytope& p, const IndexPair& next,
+                   const IntVec& next_point) {
+  std::vector<bool> visible(p.faces.size());
+  std::map<std::pair<int, int>, std::size_t> edge_face;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    visible[f] = dot(p.faces[f].normal, next_point) > p.faces[f].offset;
+    for (int e = 0; e < 3; ++e)
+      edge_face[{p.faces[f].v[e], p.faces[f].v[(e + 1) % 3]}] = f;
+  }
+  DepthHint out;
+  out.vertices = hint.vertices;
+  out.vertices.push_back(next);
+  const int apex = static_cast<int>(out.vertices.size()) - 1;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const auto& v = p.faces[f].v;
+    if (!visible[f]) {
+      out.faces.push_back(v);
+      continue;
+    }
+    for (int e = 0; e < 3; ++e) {  // a horizon edge: its twin's face is not visible
+      const auto twin = edge_face.find({v[(e + 1) % 3], v[e]});
+      if (twin != edge_face.end() && !visible[twin->second])
+        out.faces.push_back({v[e], v[(e + 1) % 3], apex});
+    }
+  }
   return out;
+}
+
+}  // namespace
+
+std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
+                                              const DepthHint& hint, int max_steps) {
+  if (a.empty() || b.empty()) return std::nullopt;
+  const detail::IntegerFrame frame = detail::integer_frame(a, b);
+  DepthHint current = hint;
+  for (int step = 0; step <= max_steps; ++step) {
+    const std::optional<CheckedPolytope> p = checked_polytope(a, b, current, frame.exponent);
+    if (!p) return std::nullopt;
+    const PolytopeFace& f = p->faces[nearest_face(p->faces)];
+    // Its plane must support A − B: max over a of n·A − min over b of n·B = c (the maximum is
+    // at least c, since the face's own vertices are points of A − B).
+    const detail::Extreme high = detail::extreme_point(a, f.normal, frame, true);
+    const detail::Extreme low = detail::extreme_point(b, f.normal, frame, false);
+    if (high.value - low.value == f.offset) {
+      // depth² = c²/‖n‖² in frame units²: c has units 2^(3e) and n 2^(2e), so ×4^e.
+      detail::Mpq depth2;
+      const Int c2 = f.offset * f.offset, n2 = dot(f.normal, f.normal);
+      mpq_set_num(depth2.get(), c2.get_mpz_t());
+      mpq_set_den(depth2.get(), n2.get_mpz_t());
+      mpq_canonicalize(depth2.get());
+      const long e = frame.exponent;
+      if (e > 0) mpq_mul_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(2 * e));
+      if (e < 0) mpq_div_2exp(depth2.get(), depth2.get(), static_cast<mp_bitcnt_t>(-2 * e));
+      DepthCertificate out;
+      out.depth_squared = detail::to_rational(depth2.get());
+      out.normal = unit_direction(f.normal);
+      out.repair_steps = step;
+      return out;
+    }
+    if (step == max_steps) break;
+    const IndexPair next{static_cast<std::int32_t>(high.index),
+                         static_cast<std::int32_t>(low.index)};
+    current = expanded(current, *p, next,
+                       detail::to_integer(a[high.index], frame.exponent) -
+                           detail::to_integer(b[low.index], frame.exponent));
+  }
+  return std::nullopt;
 }
 
 }  // namespace gjklab::exact

@@ -23,7 +23,7 @@ long base_exponent(double x) {
 }
 
 /// n scaled by a power of two so that its largest component lies in [0.5, 1), each component
-/// truncated to a double: |result_i − n_i·2^-s| ≤ 2^-53 |n_i·2^-s| + 2^-1075 for the common s.
+/// truncated to a double: |result_i − n_i·2^-s| < 2^-52 |n_i·2^-s| + 2^-1075 for the common s.
 std::array<double, 3> scaled_direction(const IntVec& n) {
   std::array<double, 3> mantissa{};
   std::array<long, 3> exponent{};
@@ -82,9 +82,9 @@ Extreme extreme_point(std::span<const Vec3> cloud, const IntVec& n, const Intege
                       bool maximise) {
   // Floating-point pass on s(x) = ±d·x, d = scaled_direction(n) (the sign makes it a minimum).
   // With ‖d‖∞ < 1 and |x_i| ≤ max_abs, the computed s differs from the exact ±(n·x)·2^-s by at
-  // most (2^-53 + γ3)·Σ|d_i||x_i| ≤ 5u·‖d‖₁·max_abs from truncating d and rounding the dot
-  // product, plus at most 6·2^-1075·(1 + max_abs) from underflow; `bound` is 8u·‖d‖₁·max_abs
-  // plus 2^-1070·(1 + max_abs), which covers both and the rounding of the bound itself.
+  // most (2u + γ3)·Σ|d_i||x_i| ≤ 5.01u·‖d‖₁·max_abs from truncating d (u = 2^-53) and rounding
+  // the dot product, plus at most 6·2^-1075·(1 + max_abs) from underflow; `bound` is
+  // 8u·‖d‖₁·max_abs plus 2^-1070·(1 + max_abs), which covers both and its own rounding.
   const std::array<double, 3> d = scaled_direction(n);
   const double sign = maximise ? -1.0 : 1.0;
   const double norm1 = std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]);

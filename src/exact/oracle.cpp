@@ -143,7 +143,7 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
   if (options.depth && answer.intersect) {
     std::optional<Rational> depth2;
     std::optional<DepthCertificate> certificate;
-    if (options.certificates && hints.depth) certificate = certify_depth(a, b, *hints.depth);
+    if (options.certificates && hints.depth) certificate = certify_depth(a, b, *hints.depth, options.certificate_steps);
     if (certificate) {
       depth2 = certificate->depth_squared;
       answer.depth_method = AnswerMethod::certified;

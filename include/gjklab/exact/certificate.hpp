@@ -16,7 +16,9 @@
 // (max over A − B of n·w = c), it is also an upper bound, and the depth squared is c²/‖n‖².
 // P is checked exactly: every directed edge paired with its reverse, each vertex's faces one
 // fan, Euler characteristic 2, every vertex on or behind every face plane with some vertex
-// strictly behind, and the origin on or behind every face plane.
+// strictly behind, and the origin on or behind every face plane. When P passes but its nearest
+// face does not support A − B, exact EPA steps add the violating support point (at most
+// `max_steps`), and the grown polytope is checked again from scratch.
 //
 // All arithmetic is exact on the input doubles (integers scaled by a common power of two);
 // floating-point filters with proven error bounds decide nearly every comparison, and only the
@@ -59,11 +61,16 @@ struct DepthCertificate {
   /// The outward unit normal of the supporting face plane that realises the depth (the
   /// direction in which B must move by the depth), rounded: each coordinate within a few ulps.
   Vec3 normal = Vec3::UnitX();
+  /// Exact EPA steps taken beyond the hint (0: the hint's own nearest face was certified).
+  int repair_steps = 0;
 };
 
 /// Certifies the squared penetration depth of an intersecting pair from an EPA polytope;
-/// nullopt when any check fails (the caller then falls back to the Minkowski hull).
+/// nullopt when any check fails (the caller then falls back to the Minkowski hull). When the
+/// polytope passes every check but its nearest face does not support A − B, up to max_steps
+/// exact EPA steps add the violating support point (and the result is checked again).
 std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
-                                      const DepthHint& hint);
+                                              const DepthHint& hint,
+                                              int max_steps = kCertificateMaxSteps);
 
 }  // namespace gjklab::exact

@@ -39,8 +39,8 @@ struct OracleOptions {
   bool depth = false;
   /// Try the certificates (certificate.hpp) before the QP. Off: the QP answers every pair.
   bool certificates = true;
-  /// Exact GJK steps the distance certificate may take beyond its hint (0: the hint's own
-  /// simplex must be the closest feature).
+  /// Exact GJK (distance) and EPA (depth) steps a certificate may take beyond its hint (0: the
+  /// hint itself must prove the answer).
   int certificate_steps = kCertificateMaxSteps;
   /// Audit mode: also solve every certified pair by the QP (and the Minkowski hull) and throw
   /// CertificateMismatch if the two rationals differ.
