@@ -321,10 +321,10 @@ Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
   return out;
 }
 
-/// The oracle options of `gjk-certified`: its depth for every intersecting pair, no hull counts.
+/// The oracle options of `gjk-certified`: a depth where one is asked (o.oracle.depth, as for
+/// `exact`), certificates on, no hull counts.
 exact::OracleOptions certified_query_options(const AlgorithmOptions& o) {
   exact::OracleOptions options = o.oracle;
-  options.depth = true;
   options.certificates = true;
   options.hull_vertices = false;
   return options;
@@ -348,8 +348,8 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
   Outcome out;
   out.intersect = c.answer.intersect;
   out.distance = c.answer.distance;
-  if (c.answer.intersect) {
-    out.depth = c.answer.depth.value_or(0.0);
+  if (c.answer.intersect && c.answer.depth) {
+    out.depth = *c.answer.depth;
     out.normal = certified_normal(c);
   }
   if (!r.any()) {
@@ -425,7 +425,7 @@ constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-certified", AnswerKind::distance,
                   "gjk-johnson and EPA, verified by exact certificates (CGAL's QP as fallback): "
                   "exact answers",
-                  at_zero_radii<swept_gjk_certified>, nullptr, false, true, swept_gjk_certified},
+                  at_zero_radii<swept_gjk_certified>, nullptr, false, false, swept_gjk_certified},
     AlgorithmInfo{"exact", AnswerKind::exact,
                   "exact answer in rational arithmetic: certified from gjklab's own GJK/EPA, "
                   "CGAL's QP where no certificate holds",

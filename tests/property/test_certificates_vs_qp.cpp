@@ -4,8 +4,12 @@
 // EPA, as in `gjklab run`.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
@@ -191,4 +195,39 @@ TEST_CASE("certified distances equal the QP's on 8000 degenerate and near-contac
   CHECK(t.pairs - t.intersecting > t.pairs / 2);
   CHECK(t.depths > 300);
   CHECK(t.certified >= t.pairs * 99 / 100);
+}
+
+TEST_CASE("oracle cost per case against the vertex count, QP and certified", "[.oracle-scaling]") {
+  // Median wall time of one exact answer (distance only, no hull counts) on random sphere
+  // points, n points per shape, half the pairs overlapping and half apart; the certified path
+  // includes its own gjk-johnson run for the hint. Reports only; asserts that both agree.
+  // tools/plot-oracle-cost draws the table that this prints.
+  using Clock = std::chrono::steady_clock;
+  testing::Rng rng(8192);
+  std::ostringstream table;
+  table << "n qp_us certified_us\n";
+  for (int n = 8; n <= 8192; n *= 2) {
+    const int pairs = n >= 2048 ? 2 : 6;
+    std::vector<double> qp_us, certified_us;
+    for (int p = 0; p < pairs; ++p) {
+      const auto pair = testing::random_pair(rng, testing::CloudKind::sphere, n, n,
+                                             p % 2 ? -0.3 : 0.05);
+      const Polytope a(pair.a), b(pair.b);
+      const exact::OracleOptions qp{.certificates = false, .hull_vertices = false};
+      const exact::OracleOptions certified{.hull_vertices = false};
+      auto t0 = Clock::now();
+      const exact::OracleAnswer q = exact::solve(pair.a, pair.b, qp);
+      auto t1 = Clock::now();
+      const exact::OracleAnswer c = solve_certified(a, b, {}, certified).answer;
+      auto t2 = Clock::now();
+      CHECK(same(q.distance_squared, c.distance_squared));
+      qp_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+      certified_us.push_back(std::chrono::duration<double, std::micro>(t2 - t1).count());
+    }
+    std::sort(qp_us.begin(), qp_us.end());
+    std::sort(certified_us.begin(), certified_us.end());
+    table << n << " " << qp_us[qp_us.size() / 2] << " " << certified_us[certified_us.size() / 2]
+          << "\n";
+  }
+  WARN(table.str());
 }
