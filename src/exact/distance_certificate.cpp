@@ -139,17 +139,12 @@ void squared_length(const IntVec& n, const Int& d, long exponent, mpq_ptr q) {
 /// The nearest double to Σ weights[k]·points[k] / denominator · 2^exponent, per coordinate.
 Vec3 nearest_combination(const ExactClosest& c, std::span<const IntVec> points, long exponent) {
   Vec3 out;
-  detail::Mpq q;
+  Int sum;
   for (int j = 0; j < 3; ++j) {
-    Int sum = 0;
+    sum = 0;
     for (std::size_t k = 0; k < points.size(); ++k)
       if (c.subset & (1u << k)) sum += c.weights[k] * points[k][j];
-    mpq_set_num(q.get(), sum.get_mpz_t());
-    mpq_set_den(q.get(), c.denominator.get_mpz_t());
-    mpq_canonicalize(q.get());
-    if (exponent > 0) mpq_mul_2exp(q.get(), q.get(), static_cast<mp_bitcnt_t>(exponent));
-    if (exponent < 0) mpq_div_2exp(q.get(), q.get(), static_cast<mp_bitcnt_t>(-exponent));
-    out[j] = detail::nearest_double(q.get());
+    out[j] = detail::nearest_double(sum.get_mpz_t(), c.denominator.get_mpz_t(), exponent);
   }
   return out;
 }
@@ -225,6 +220,7 @@ std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
       detail::Mpq d2;
       if (!intersect) squared_length(c->numerator, c->denominator, frame.exponent, d2.get());
       out.distance_squared = detail::to_rational(d2.get());
+      out.distance = detail::nearest_sqrt(d2.get());
       out.feature.simplex = simplex.pairs;
       out.repair_steps = step;
       return out;

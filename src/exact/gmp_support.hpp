@@ -41,6 +41,10 @@ void set_double(mpq_ptr out, double x);
 
 /// The double nearest to q (ties to even).
 double nearest_double(mpq_srcptr q);
+/// The double nearest to num/den · 2^exponent (den ≠ 0; lowest terms not required, so no gcd).
+double nearest_double(mpz_srcptr num, mpz_srcptr den, long exponent);
+/// The double nearest to √q for q ≥ 0 (NaN for q < 0).
+double nearest_sqrt(mpq_srcptr q);
 
 /// The public decimal form of q (q must be canonical: lowest terms, positive denominator).
 Rational to_rational(mpq_srcptr q);

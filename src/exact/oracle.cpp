@@ -138,7 +138,7 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
     answer.distance_squared = qp_distance_squared(hulls);
   }
   answer.intersect = answer.distance_squared.is_zero();
-  answer.distance = sqrt_to_double(answer.distance_squared);
+  answer.distance = certificate ? certificate->distance : sqrt_to_double(answer.distance_squared);
 
   if (options.depth && answer.intersect) {
     std::optional<Rational> depth2;

@@ -131,6 +131,23 @@ void set_double(mpq_ptr out, double x) {
   mpq_set_d(out, x);
 }  // exact for finite x
 
+double nearest_double(mpz_srcptr num, mpz_srcptr den, long exponent) {
+  const int sign = mpz_sgn(num) * mpz_sgn(den);
+  if (sign == 0) return 0.0;
+  detail::Mpz n, d;
+  mpz_abs(n.get(), num);
+  mpz_abs(d.get(), den);
+  if (exponent > 0) mpz_mul_2exp(n.get(), n.get(), static_cast<mp_bitcnt_t>(exponent));
+  if (exponent < 0) mpz_mul_2exp(d.get(), d.get(), static_cast<mp_bitcnt_t>(-exponent));
+  const double magnitude = nearest_quotient(n.get(), d.get());
+  return sign < 0 ? -magnitude : magnitude;
+}
+
+double nearest_sqrt(mpq_srcptr q) {
+  if (mpq_sgn(q) <= 0) return mpq_sgn(q) == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN();
+  return exact::nearest_sqrt(mpq_numref(q), mpq_denref(q));  // the mpz overload above
+}
+
 double nearest_double(mpq_srcptr q) {
   const int sign = mpq_sgn(q);
   if (sign == 0) return 0.0;

@@ -37,6 +37,7 @@ namespace gjklab::exact {
 struct DistanceCertificate {
   bool intersect = false;
   Rational distance_squared;  ///< exact, in lowest terms (0 when intersecting)
+  double distance = 0;        ///< √distance_squared, correctly rounded
   /// The exact closest points p ∈ conv(A) and q ∈ conv(B) (p = q when intersecting is not
   /// tracked: both are then the common point found), each rounded to the nearest double.
   Vec3 witness_a = Vec3::Zero();
