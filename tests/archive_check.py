@@ -33,7 +33,9 @@ ALGORITHM = {"intersect": bool, "distance": np.float64, "abs_error": np.float64,
              "rel_error": np.float64, "boolean_correct": bool, "iterations": np.int32,
              "support_calls": np.int32, "termination": TERMINATIONS, "time_ns": np.float64,
              "failure": FAILURES, "depth": np.float64, "depth_abs_error": np.float64,
-             "depth_rel_error": np.float64}
+             "depth_rel_error": np.float64, "witness_error_a": np.float64,
+             "witness_error_b": np.float64, "witness_distance_error": np.float64}
+ALGORITHM_VEC3 = ("witness_a", "witness_b")
 GEOMETRY = {"case_id": np.uint64, "a_offset": np.uint64, "a_count": np.uint64,
             "b_offset": np.uint64, "b_count": np.uint64}
 
@@ -93,6 +95,10 @@ def main(path):
         for name in algorithms:
             g = f["algorithms"][name]
             check_group(g, ALGORITHM, rows)
+            for column in ALGORITHM_VEC3:
+                v = g[column]
+                assert v.shape == (rows, 3) and v.dtype == np.float64, v.name
+                assert v.maxshape == (None, 3) and v.compression == "gzip", v.name
             assert all(isinstance(v, str) for v in g.attrs.values()), f"{g.name}: options"
 
         geo = f["geometry"]

@@ -21,39 +21,11 @@
 
 #include "gjklab/exact/oracle.hpp"
 #include "gmp_support.hpp"
+#include "mpfr_support.hpp"
 
 namespace gjklab::exact {
 
 namespace {
-
-/// An owned mpfr_t of the given precision.
-class Mpfr {
- public:
-  explicit Mpfr(mpfr_prec_t precision) { mpfr_init2(v_, precision); }
-  ~Mpfr() { mpfr_clear(v_); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-  mpfr_ptr get() { return v_; }
-
- private:
-  mpfr_t v_;
-};
-
-constexpr mpfr_prec_t kFirstPrecision = 128;
-constexpr mpfr_prec_t kLastPrecision = 1 << 16;
-
-/// The double nearest to the value that `approximate(out, P)` approximates with relative error
-/// below 2^(4−P) at precision P (out has precision P). The value must not be 0.
-template <class Approximate>
-double correctly_rounded(Approximate&& approximate) {
-  for (mpfr_prec_t p = kFirstPrecision;; p *= 2) {
-    Mpfr x(p);
-    approximate(x.get(), p);
-    // |error| < 2^(4−p)·|value| ≤ 2^(5−p)·2^EXP(x) (|value| < 2·2^EXP(x) up to that error).
-    if (p >= kLastPrecision || mpfr_can_round(x.get(), p - 5, MPFR_RNDN, MPFR_RNDN, 53))
-      return mpfr_get_d(x.get(), MPFR_RNDN);
-  }
-}
 
 /// out := √q (rounded at out's precision).
 void sqrt_of(mpfr_ptr out, mpq_srcptr q) {
@@ -67,8 +39,8 @@ double nearest_sqrt_minus(mpq_srcptr q, mpq_srcptr r) {
   mpq_mul(numerator.get(), r, r);
   mpq_sub(numerator.get(), q, numerator.get());
   if (mpq_sgn(numerator.get()) == 0) return 0.0;
-  return correctly_rounded([&](mpfr_ptr out, mpfr_prec_t p) {
-    Mpfr denominator(p), rr(p);
+  return detail::correctly_rounded([&](mpfr_ptr out, mpfr_prec_t p) {
+    detail::Mpfr denominator(p), rr(p);
     sqrt_of(denominator.get(), q);
     mpfr_set_q(rr.get(), r, MPFR_RNDN);
     mpfr_add(denominator.get(), denominator.get(), rr.get(), MPFR_RNDN);  // √q + r > 0
@@ -80,8 +52,8 @@ double nearest_sqrt_minus(mpq_srcptr q, mpq_srcptr r) {
 /// The double nearest to √q + r for rationals q, r ≥ 0.
 double nearest_sqrt_plus(mpq_srcptr q, mpq_srcptr r) {
   if (mpq_sgn(q) == 0 && mpq_sgn(r) == 0) return 0.0;
-  return correctly_rounded([&](mpfr_ptr out, mpfr_prec_t p) {
-    Mpfr rr(p);
+  return detail::correctly_rounded([&](mpfr_ptr out, mpfr_prec_t p) {
+    detail::Mpfr rr(p);
     sqrt_of(out, q);
     mpfr_set_q(rr.get(), r, MPFR_RNDN);
     mpfr_add(out, out, rr.get(), MPFR_RNDN);

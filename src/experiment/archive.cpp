@@ -97,6 +97,18 @@ std::vector<T> gather(std::span<const CaseResult> results, F field) {
   return values;
 }
 
+/// A 3-vector field of every result, row by row (x, y, z).
+template <class F>
+std::vector<double> gather_vec3(std::span<const CaseResult> results, F field) {
+  std::vector<double> values;
+  values.reserve(3 * results.size());
+  for (const CaseResult& r : results) {
+    const Vec3& v = field(r);
+    values.insert(values.end(), {v.x(), v.y(), v.z()});
+  }
+  return values;
+}
+
 // The HDF5 types of the archive, shared by the writer and the reader.
 struct Types {
   h5::Handle boolean, string, shape, placement, contact, termination, failure, step, method;
@@ -128,7 +140,8 @@ struct ArchiveWriter::Impl {
   };
   struct AlgorithmColumns {
     h5::Column intersect, distance, abs_error, rel_error, boolean_correct, iterations,
-        support_calls, termination, time_ns, failure, depth, depth_abs_error, depth_rel_error;
+        support_calls, termination, time_ns, failure, depth, depth_abs_error, depth_rel_error,
+        witness_a, witness_b, witness_error_a, witness_error_b, witness_distance_error;
   };
   struct GeometryColumns {
     h5::Column case_id, a_offset, a_count, b_offset, b_count, vertices_a, vertices_b;
@@ -167,7 +180,9 @@ struct ArchiveWriter::Impl {
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
                     &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure,
-                    &a.depth, &a.depth_abs_error, &a.depth_rel_error});
+                    &a.depth, &a.depth_abs_error, &a.depth_rel_error, &a.witness_a,
+                    &a.witness_b, &a.witness_error_a, &a.witness_error_b,
+                    &a.witness_distance_error});
       for (TraceColumns& t : traces)
         for (h5::Column* c : t.all())
           all.push_back(c);
@@ -320,6 +335,11 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
           column(gi, p, "depth", f64f, f64m, chunk),
           column(gi, p, "depth_abs_error", f64f, f64m, chunk),
           column(gi, p, "depth_rel_error", f64f, f64m, chunk),
+          column(gi, p, "witness_a", f64f, f64m, chunk, 3),
+          column(gi, p, "witness_b", f64f, f64m, chunk, 3),
+          column(gi, p, "witness_error_a", f64f, f64m, chunk),
+          column(gi, p, "witness_error_b", f64f, f64m, chunk),
+          column(gi, p, "witness_distance_error", f64f, f64m, chunk),
       });
     }
   }
@@ -418,6 +438,12 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     a.depth.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth; }));
     a.depth_abs_error.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth_abs_error; }));
     a.depth_rel_error.append(cx, gather<double>(rs, [&](R r) { return alg(r).depth_rel_error; }));
+    a.witness_a.append(cx, gather_vec3(rs, [&](R r) -> const Vec3& { return alg(r).witness_a; }));
+    a.witness_b.append(cx, gather_vec3(rs, [&](R r) -> const Vec3& { return alg(r).witness_b; }));
+    a.witness_error_a.append(cx, gather<double>(rs, [&](R r) { return alg(r).witness_error_a; }));
+    a.witness_error_b.append(cx, gather<double>(rs, [&](R r) { return alg(r).witness_error_b; }));
+    a.witness_distance_error.append(
+        cx, gather<double>(rs, [&](R r) { return alg(r).witness_distance_error; }));
   }
   {
     GeometryColumns& g = c.geometry;
@@ -815,6 +841,12 @@ Archive read_archive(const fs::path& path) {
       const auto depth = h5::read_column<double>(cx, gi, p, "depth", f64m, n);
       const auto depth_abs = h5::read_column<double>(cx, gi, p, "depth_abs_error", f64m, n);
       const auto depth_rel = h5::read_column<double>(cx, gi, p, "depth_rel_error", f64m, n);
+      const auto witness_a = h5::read_column<double>(cx, gi, p, "witness_a", f64m, n, 3);
+      const auto witness_b = h5::read_column<double>(cx, gi, p, "witness_b", f64m, n, 3);
+      const auto witness_error_a = h5::read_column<double>(cx, gi, p, "witness_error_a", f64m, n);
+      const auto witness_error_b = h5::read_column<double>(cx, gi, p, "witness_error_b", f64m, n);
+      const auto witness_distance_error =
+          h5::read_column<double>(cx, gi, p, "witness_distance_error", f64m, n);
       for (std::size_t i = 0; i < n; ++i) {
         AlgorithmRecord& ar = a.results[i].algorithms[k];
         ar.intersect = intersect[i] != 0;
@@ -830,6 +862,11 @@ Archive read_archive(const fs::path& path) {
         ar.depth = depth[i];
         ar.depth_abs_error = depth_abs[i];
         ar.depth_rel_error = depth_rel[i];
+        ar.witness_a = Vec3(witness_a[3 * i], witness_a[3 * i + 1], witness_a[3 * i + 2]);
+        ar.witness_b = Vec3(witness_b[3 * i], witness_b[3 * i + 1], witness_b[3 * i + 2]);
+        ar.witness_error_a = witness_error_a[i];
+        ar.witness_error_b = witness_error_b[i];
+        ar.witness_distance_error = witness_distance_error[i];
       }
     }
   }

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/exact/witness.hpp"
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/certified.hpp"
@@ -91,6 +92,20 @@ AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactReco
     }
   }
   return r;
+}
+
+/// The algorithm's witness points and, for polytopes with an exact answer, their exact errors.
+void add_witnesses(AlgorithmRecord& r, const Outcome& o, const exact::OracleAnswer* exact,
+                   std::span<const Vec3> a, std::span<const Vec3> b) {
+  if (!o.witness_a || !o.witness_b) return;
+  r.witness_a = *o.witness_a;
+  r.witness_b = *o.witness_b;
+  if (!exact || exact->swept || !r.witness_a.allFinite() || !r.witness_b.allFinite()) return;
+  r.witness_error_a = exact::distance_to_hull(a, r.witness_a);
+  r.witness_error_b = exact::distance_to_hull(b, r.witness_b);
+  if (!o.intersect)
+    r.witness_distance_error =
+        exact::distance_difference(r.witness_a, r.witness_b, exact->distance_squared);
 }
 
 /// A case is kept with its geometry when any answer is wrong or any query did not converge.
@@ -193,6 +208,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
     outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options));
     result.algorithms.push_back(algorithm_record(outcomes.back(), result.exact, size));
+    add_witnesses(result.algorithms.back(), outcomes.back(), answer ? &*answer : nullptr,
+                  generated.a, generated.b);
     if (config.timing)
       result.algorithms.back().time_ns =
           time_query(algorithm, a, b, radii, spec.options, config.repetitions);
@@ -210,9 +227,15 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
       result.exact = exact_record(*answer, band);
       for (std::size_t i = 0; i < outcomes.size(); ++i) {
-        const double time_ns = result.algorithms[i].time_ns;
-        result.algorithms[i] = algorithm_record(outcomes[i], result.exact, size);
-        result.algorithms[i].time_ns = time_ns;
+        AlgorithmRecord& r = result.algorithms[i];
+        AlgorithmRecord refreshed = algorithm_record(outcomes[i], result.exact, size);
+        refreshed.time_ns = r.time_ns;
+        refreshed.witness_a = r.witness_a;
+        refreshed.witness_b = r.witness_b;
+        refreshed.witness_error_a = r.witness_error_a;
+        refreshed.witness_error_b = r.witness_error_b;
+        refreshed.witness_distance_error = r.witness_distance_error;
+        r = refreshed;
       }
     }
   }

@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/exact/witness.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -258,4 +260,20 @@ TEST_CASE("depth certificate: adversarial polytopes fall back", "[unit][certific
   const exact::OracleAnswer answer = exact::solve(a, b, {.depth = true}, hints);
   CHECK(answer.depth_method == AnswerMethod::qp);
   CHECK(same(*answer.depth_squared, rational("1", "4")));
+}
+
+TEST_CASE("witness errors: exact distance to the hull and to the exact distance",
+          "[unit][certificate]") {
+  const Cloud unit_box = box({0, 0, 0});
+  CHECK(exact::distance_to_hull(unit_box, {3, 0, 0}) == 2);
+  CHECK(exact::distance_to_hull(unit_box, {2, 2, 1}) == std::sqrt(2.0));
+  CHECK(exact::distance_to_hull(unit_box, {0.5, -0.25, 1}) == 0);  // on a face
+  CHECK(exact::distance_to_hull(unit_box, {0.1, 0.2, 0.3}) == 0);  // inside
+  CHECK(exact::distance_to_hull(Cloud{{1, 1, 1}}, {1, 1, 1 + 0x1p-40}) == 0x1p-40);
+  CHECK(exact::distance_difference({0, 0, 0}, {3, 4, 0}, rational("25")) == 0);
+  CHECK(exact::distance_difference({0, 0, 0}, {3, 4, 0}, rational("16")) == 1);
+  CHECK(exact::distance_difference({0, 0, 0}, {3, 4, 0}, rational("36")) == 1);
+  // 1 + 2^-52 against 1: the difference is exactly one ulp of 1, however close.
+  CHECK(exact::distance_difference({0, 0, 0}, {1 + 0x1p-52, 0, 0}, rational("1")) == 0x1p-52);
+  CHECK_THROWS(exact::distance_to_hull(unit_box, {NAN, 0, 0}));
 }

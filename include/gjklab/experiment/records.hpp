@@ -138,6 +138,18 @@ struct AlgorithmRecord {
   /// the exact depth was computed; NaN otherwise.
   double depth_abs_error = std::numeric_limits<double>::quiet_NaN();
   double depth_rel_error = std::numeric_limits<double>::quiet_NaN();
+  /// The witness points the algorithm reported (world frame): closest points of a separated
+  /// answer, or the deepest points of a penetration answer; NaN when it reports none.
+  Vec3 witness_a = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 witness_b = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Exact errors of the witnesses (length units, correctly rounded): the distance of each
+  /// from its own hull (0 when on or inside it), and for a separated answer
+  /// | ‖witness_a − witness_b‖ − exact distance |. NaN without witnesses, without the oracle,
+  /// for sphere-swept shapes (witnesses on the swept surfaces), and the last for intersecting
+  /// answers.
+  double witness_error_a = std::numeric_limits<double>::quiet_NaN();
+  double witness_error_b = std::numeric_limits<double>::quiet_NaN();
+  double witness_distance_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Both clouds of a case, kept in the archive when any answer was wrong or not converged.
