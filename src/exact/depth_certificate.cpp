@@ -23,6 +23,7 @@
 
 #include "gjklab/exact/certificate.hpp"
 #include "gmp_support.hpp"
+#include "hull.hpp"
 #include "integer_geometry.hpp"
 
 namespace gjklab::exact {
@@ -246,6 +247,24 @@ DepthHint expanded(const DepthHint& hint, const CheckedPolytope& p, const IndexP
   return out;
 }
 
+/// The hint with its faces replaced by the exact hull of its (valid) vertices; no faces when
+/// an index is out of range or the points do not span space.
+DepthHint rebuilt_from_hull(std::span<const Vec3> a, std::span<const Vec3> b,
+                            const DepthHint& hint) {
+  DepthHint out;
+  std::vector<Vec3> pa, pb;
+  for (const IndexPair& p : hint.vertices) {
+    if (p.a < 0 || static_cast<std::size_t>(p.a) >= a.size() || p.b < 0 ||
+        static_cast<std::size_t>(p.b) >= b.size())
+      return out;
+    pa.push_back(a[p.a]);
+    pb.push_back(b[p.b]);
+  }
+  out.vertices = hint.vertices;
+  out.faces = detail::difference_hull_triangles(pa, pb);
+  return out;
+}
+
 }  // namespace
 
 std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span<const Vec3> b,
@@ -253,8 +272,17 @@ std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span
   if (a.empty() || b.empty()) return std::nullopt;
   const detail::IntegerFrame frame = detail::integer_frame(a, b);
   DepthHint current = hint;
+  bool rebuilt = false;
   for (int step = 0; step <= max_steps; ++step) {
-    const std::optional<CheckedPolytope> p = checked_polytope(a, b, current, frame.exponent);
+    std::optional<CheckedPolytope> p = checked_polytope(a, b, current, frame.exponent);
+    if (!p && !rebuilt) {
+      // The hint's faces fail (a floating-point EPA may leave a face slightly concave or a
+      // vertex slightly outside): its points are still points of A − B, so take their exact
+      // hull instead, once, and check that like any hint.
+      current = rebuilt_from_hull(a, b, current);
+      rebuilt = true;
+      p = checked_polytope(a, b, current, frame.exponent);
+    }
     if (!p) return std::nullopt;
     const PolytopeFace& f = p->faces[nearest_face(p->faces)];
     // Its plane must support A − B: max over a of n·A − min over b of n·B = c (the maximum is

@@ -196,6 +196,35 @@ HullSummary hull_summary(std::span<const Vec3> cloud) {
   return out;
 }
 
+std::vector<std::array<int, 3>> difference_hull_triangles(std::span<const Vec3> a,
+                                                          std::span<const Vec3> b) {
+  std::vector<Epeck::Point_3> points;
+  points.reserve(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k)
+    points.push_back(CGAL::ORIGIN + (Epeck::Point_3(a[k].x(), a[k].y(), a[k].z()) -
+                                     Epeck::Point_3(b[k].x(), b[k].y(), b[k].z())));
+  std::vector<std::array<int, 3>> out;
+  if (points.size() < 4) return out;
+  using Mesh = CGAL::Surface_mesh<Epeck::Point_3>;
+  Mesh mesh;
+  CGAL::convex_hull_3(points.begin(), points.end(), mesh);
+  if (mesh.number_of_faces() < 4) return out;  // flat, a segment or a point
+  auto input_index = [&](const Epeck::Point_3& p) {
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (points[k] == p) return static_cast<int>(k);
+    return -1;
+  };
+  for (Mesh::Face_index f : mesh.faces()) {
+    std::array<int, 3> t{};
+    int i = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      if (i < 3) t[i++] = input_index(mesh.point(v));
+    if (i != 3 || t[0] < 0 || t[1] < 0 || t[2] < 0) return {};
+    out.push_back(t);
+  }
+  return out;
+}
+
 void penetration_depth_squared(std::span<const Vec3> a_points, std::span<const Vec3> b_points,
                                mpq_ptr out) {
   mpq_set_ui(out, 0, 1);

@@ -5,6 +5,7 @@
 
 #include <gmp.h>
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -28,5 +29,11 @@ HullSummary hull_summary(std::span<const Vec3> cloud);
 /// the difference cloud is much smaller).
 void penetration_depth_squared(std::span<const Vec3> a_points, std::span<const Vec3> b_points,
                                mpq_ptr out);
+
+/// The boundary triangles of the convex hull of the exact points a[k] − b[k] (k over the
+/// inputs), each as three input indices, counter-clockwise seen from outside (coplanar facets
+/// triangulated); empty when the points do not span space. Duplicates map to one of them.
+std::vector<std::array<int, 3>> difference_hull_triangles(std::span<const Vec3> a,
+                                                          std::span<const Vec3> b);
 
 }  // namespace gjklab::exact::detail

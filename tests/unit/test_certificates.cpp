@@ -207,23 +207,35 @@ TEST_CASE("depth certificate: overlapping boxes, certified and exact", "[unit][c
   CHECK(*answer.depth == 0.5);
 }
 
-TEST_CASE("depth certificate: adversarial polytopes fall back", "[unit][certificate]") {
+TEST_CASE("depth certificate: adversarial polytopes are rebuilt or fall back, never wrong",
+          "[unit][certificate]") {
   const Cloud a = box({0, 0, 0}), b = box({1.5, 0.25, 0.5});
   const DepthHint good = epa_hint(a, b);
   REQUIRE(exact::certify_depth(a, b, good).has_value());
 
+  // Faces that fail the checks are rebuilt once from the exact hull of the hint's points of
+  // A − B: the answer is then the right one, certified.
   DepthHint open = good;  // one face missing: not a closed surface
   open.faces.pop_back();
-  CHECK_FALSE(exact::certify_depth(a, b, open).has_value());
-
   DepthHint reversed = good;  // every face turned inside out
   for (auto& f : reversed.faces)
     std::swap(f[1], f[2]);
-  CHECK_FALSE(exact::certify_depth(a, b, reversed).has_value());
+  for (const DepthHint& rebuilt : {open, reversed}) {
+    const auto c = exact::certify_depth(a, b, rebuilt);
+    REQUIRE(c.has_value());
+    CHECK(same(c->depth_squared, rational("1", "4")));
+  }
+  // Points that do not span space cannot be rebuilt: a flat set of four of the hint's points.
+  DepthHint flat;
+  flat.vertices = {{0, 0}, {1, 0}, {2, 0}, {3, 0}};  // a face of the box A minus one b: flat
+  flat.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+  CHECK_FALSE(exact::certify_depth(a, b, flat).has_value());
 
-  DepthHint out_of_range = good;
+  DepthHint out_of_range = good;  // a face index past the vertices: rebuilt from the points
   out_of_range.faces[0][0] = static_cast<int>(good.vertices.size());
-  CHECK_FALSE(exact::certify_depth(a, b, out_of_range).has_value());
+  const auto rebuilt = exact::certify_depth(a, b, out_of_range);
+  REQUIRE(rebuilt.has_value());
+  CHECK(same(rebuilt->depth_squared, rational("1", "4")));
 
   DepthHint bad_index = good;
   bad_index.vertices[0].a = 99;
@@ -254,9 +266,10 @@ TEST_CASE("depth certificate: adversarial polytopes fall back", "[unit][certific
   const auto dented_cert = exact::certify_depth(small_a, small_b, dented);
   if (dented_cert) CHECK(same(dented_cert->depth_squared, *qp(small_a, small_b).depth_squared));
 
-  // Through the oracle: a wrong depth hint is answered by the Minkowski hull.
+  // Through the oracle: a depth hint that can be neither checked nor rebuilt is answered by
+  // the Minkowski hull.
   exact::OracleHints hints;
-  hints.depth = reversed;
+  hints.depth = bad_index;
   const exact::OracleAnswer answer = exact::solve(a, b, {.depth = true}, hints);
   CHECK(answer.depth_method == AnswerMethod::qp);
   CHECK(same(*answer.depth_squared, rational("1", "4")));

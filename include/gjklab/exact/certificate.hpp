@@ -16,9 +16,10 @@
 // (max over A − B of n·w = c), it is also an upper bound, and the depth squared is c²/‖n‖².
 // P is checked exactly: every directed edge paired with its reverse, each vertex's faces one
 // fan, Euler characteristic 2, every vertex on or behind every face plane with some vertex
-// strictly behind, and the origin on or behind every face plane. When P passes but its nearest
-// face does not support A − B, exact EPA steps add the violating support point (at most
-// `max_steps`), and the grown polytope is checked again from scratch.
+// strictly behind, and the origin on or behind every face plane. When the hint's faces fail
+// these checks, they are replaced once by the exact hull of its points (still points of
+// A − B). When P passes but its nearest face does not support A − B, exact EPA steps add the
+// violating support point (at most `max_steps`), and each grown polytope is checked again.
 //
 // All arithmetic is exact on the input doubles (integers scaled by a common power of two);
 // floating-point filters with proven error bounds decide nearly every comparison, and only the
