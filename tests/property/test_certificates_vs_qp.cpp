@@ -13,6 +13,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/certified.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/families.hpp"
@@ -32,6 +33,8 @@ bool same(const exact::Rational& x, const exact::Rational& y) {
   return x.numerator == y.numerator && x.denominator == y.denominator;
 }
 
+const experiment::AlgorithmInfo& gjk_certified = *experiment::find_algorithm("gjk-certified");
+
 /// Answers one pair by the certificates and by the QP, and checks that the rationals agree.
 /// The depth (costlier by the QP: a hull of |A|·|B| points) is compared when `depth`.
 void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
@@ -47,6 +50,10 @@ void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
   REQUIRE(q.method == exact::AnswerMethod::qp);
   CHECK(same(c.distance_squared, q.distance_squared));
   CHECK(c.intersect == q.intersect);
+  // gjk-certified is never wrong: its boolean and its correctly rounded distance are exact.
+  const experiment::Outcome g = gjk_certified.run(pa, pb, {});
+  CHECK(g.intersect == q.intersect);
+  CHECK(*g.distance == q.distance);
   ++t.pairs;
   t.intersecting += q.intersect;
   t.certified += c.method == exact::AnswerMethod::certified;
