@@ -676,6 +676,27 @@ void exclude_families(const Section& top, std::vector<FamilySpec>& families) {
 /// Bases may themselves have a base, up to this depth (which also stops a cycle).
 constexpr int kMaxBaseDepth = 8;
 
+/// Rewrites each relative `path` of the base's [[family]] tables (relative to the base file's
+/// folder) to name the same file relative to the derived file's folder, so that a base used
+/// from another folder still finds its meshes and case files.
+void rebase_family_paths(toml::table& base, const std::filesystem::path& base_folder,
+                         const std::filesystem::path& derived_folder) {
+  toml::array* families = base.get_as<toml::array>("family");
+  if (!families) return;
+  for (toml::node& node : *families) {
+    toml::table* family = node.as_table();
+    if (!family) continue;
+    toml::value<std::string>* path = family->get_as<std::string>("path");
+    if (!path || std::filesystem::path(path->get()).is_absolute()) continue;
+    const std::filesystem::path target = (base_folder / path->get()).lexically_normal();
+    const std::filesystem::path from =
+        derived_folder.empty() ? std::filesystem::path(".") : derived_folder.lexically_normal();
+    std::filesystem::path moved = target.lexically_relative(from);
+    if (moved.empty()) moved = std::filesystem::absolute(target);
+    *path = moved.generic_string();
+  }
+}
+
 /// The experiment `derived` (read from `source`) over its base file: `base = "FILE"`, relative
 /// to `source`'s folder. Keys of `derived` win; tables merge (see merge_over).
 toml::table with_base(toml::table derived, const std::string& source, int depth) {
@@ -693,6 +714,7 @@ toml::table with_base(toml::table derived, const std::string& source, int depth)
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   toml::table base = parse_toml(text, path.string());
   if (base.contains("base")) base = with_base(std::move(base), path.string(), depth + 1);
+  rebase_family_paths(base, path.parent_path(), std::filesystem::path(source).parent_path());
   derived.erase("base");
   merge_over(base, derived);
   return base;

@@ -159,9 +159,16 @@ std::vector<std::pair<std::string, RunSummary>> FamilySummaryBuilder::build() co
 
 void print_family_table(std::ostream& out,
                         const std::vector<std::pair<std::string, RunSummary>>& families) {
-  char line[256];
-  std::snprintf(line, sizeof line, "%-24s %-14s %7s %7s %10s  %s\n", "family", "algorithm", "cases",
-                "wrong", "err_max", "not converged");
+  // The name columns are as wide as their longest entry (at least 24 and 14 characters).
+  int family_width = 24, algorithm_width = 14;
+  for (const auto& [family, s] : families) {
+    family_width = std::max(family_width, static_cast<int>(family.size()));
+    for (const AlgorithmSummary& a : s.algorithms)
+      algorithm_width = std::max(algorithm_width, static_cast<int>(a.name.size()));
+  }
+  char line[512];
+  std::snprintf(line, sizeof line, "%-*s %-*s %7s %7s %10s  %s\n", family_width, "family",
+                algorithm_width, "algorithm", "cases", "wrong", "err_max", "not converged");
   out << line;
   for (const auto& [family, s] : families) {
     for (const AlgorithmSummary& a : s.algorithms) {
@@ -172,8 +179,9 @@ void print_family_table(std::ostream& out,
           stops += std::string(stops.empty() ? "" : " ") + std::string(to_string(t)) + "=" +
                    std::to_string(n);
       }
-      std::snprintf(line, sizeof line, "%-24s %-14s %7llu %7llu %10s  %s\n", family.c_str(),
-                    a.name.c_str(), static_cast<unsigned long long>(a.cases),
+      std::snprintf(line, sizeof line, "%-*s %-*s %7llu %7llu %10s  %s\n", family_width,
+                    family.c_str(), algorithm_width, a.name.c_str(),
+                    static_cast<unsigned long long>(a.cases),
                     static_cast<unsigned long long>(a.wrong_booleans),
                     a.distances ? format("%.2e", a.rel_error_max).c_str() : "-",
                     stops.empty() ? "-" : stops.c_str());

@@ -653,6 +653,33 @@ name = "gjk-sv"
   }
 }
 
+TEST_CASE("base: a base's relative mesh and case-file paths resolve against its own folder",
+          "[unit][config]") {
+  ExperimentFolder dir("base-paths");
+  std::filesystem::create_directories(dir.path / "studies" / "meshes");
+  std::filesystem::copy_file(std::filesystem::path(GJKLAB_TEST_DATA_DIR) / "box_shifted.off",
+                             dir.path / "studies" / "meshes" / "box_shifted.off");
+  dir.write("studies/base.toml", R"(name = "base"
+seed = 3
+cases = 4
+[[family]]
+name = "meshes"
+shape = "mesh"
+path = "meshes"
+[[algorithm]]
+name = "gjk-johnson"
+)");
+  std::filesystem::create_directories(dir.path / "elsewhere");
+  const auto derived = dir.write("elsewhere/derived.toml", R"(base = "../studies/base.toml"
+name = "derived"
+)");
+  const ExperimentConfig c = load_experiment(derived);  // failed: "meshes: no such folder"
+  REQUIRE(c.families.size() == 1);
+  CHECK(generate_case(c, 0).a.size() == 8);  // the box's vertices
+  // The archived text names the folder relative to the derived file, and reads back from there.
+  CHECK(c.text.find("../studies/meshes") != std::string::npos);
+}
+
 TEST_CASE("base and exclude_families errors name the file, line and key", "[unit][config]") {
   ExperimentFolder dir("base-errors");
   dir.write("base.toml",
