@@ -6,6 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <ostream>
 #include <stdexcept>
@@ -70,8 +71,8 @@ double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polyt
   return median(std::move(ns));
 }
 
-AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactRecord>& exact,
-                                 double size) {
+/// The algorithm's own answer, as recorded (its errors are judge()'s).
+AlgorithmRecord algorithm_record(const Outcome& o) {
   AlgorithmRecord r;
   r.intersect = o.intersect;
   if (o.distance) r.distance = *o.distance;
@@ -79,19 +80,20 @@ AlgorithmRecord algorithm_record(const Outcome& o, const std::optional<ExactReco
   r.iterations = o.iterations;
   r.support_calls = o.support_calls;
   r.termination = o.termination;
-  if (exact) {
-    if (o.distance) {
-      r.abs_error = std::abs(*o.distance - exact->distance);
-      r.rel_error = r.abs_error / size;
-    }
-    r.boolean_correct =
-        exact->contact == ContactClass::touching_band || o.intersect == exact->intersect;
-    if (o.depth && o.intersect && exact->intersect && !std::isnan(exact->depth)) {
-      r.depth_abs_error = std::abs(*o.depth - exact->depth);
-      r.depth_rel_error = r.depth_abs_error / size;
-    }
-  }
   return r;
+}
+
+/// Sets the record's errors and correctness against the exact answer, all of them, so that a
+/// record judged again (after the exact depth arrived) keeps nothing stale.
+void judge(AlgorithmRecord& r, const Outcome& o, const ExactRecord& exact, double size) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  r.abs_error = o.distance ? std::abs(*o.distance - exact.distance) : kNaN;
+  r.rel_error = r.abs_error / size;
+  r.boolean_correct =
+      exact.contact == ContactClass::touching_band || o.intersect == exact.intersect;
+  const bool depths = o.depth && o.intersect && exact.intersect && !std::isnan(exact.depth);
+  r.depth_abs_error = depths ? std::abs(*o.depth - exact.depth) : kNaN;
+  r.depth_rel_error = r.depth_abs_error / size;
 }
 
 /// The algorithm's witness points and, for polytopes with an exact answer, their exact errors.
@@ -207,7 +209,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   for (const AlgorithmSpec& spec : config.algorithms) {
     const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
     outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options));
-    result.algorithms.push_back(algorithm_record(outcomes.back(), result.exact, size));
+    result.algorithms.push_back(algorithm_record(outcomes.back()));
+    if (result.exact) judge(result.algorithms.back(), outcomes.back(), *result.exact, size);
     add_witnesses(result.algorithms.back(), outcomes.back(), answer ? &*answer : nullptr,
                   generated.a, generated.b);
     if (config.timing)
@@ -226,17 +229,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     if (disagreement) {
       answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
       result.exact = exact_record(*answer, band);
-      for (std::size_t i = 0; i < outcomes.size(); ++i) {
-        AlgorithmRecord& r = result.algorithms[i];
-        AlgorithmRecord refreshed = algorithm_record(outcomes[i], result.exact, size);
-        refreshed.time_ns = r.time_ns;
-        refreshed.witness_a = r.witness_a;
-        refreshed.witness_b = r.witness_b;
-        refreshed.witness_error_a = r.witness_error_a;
-        refreshed.witness_error_b = r.witness_error_b;
-        refreshed.witness_distance_error = r.witness_distance_error;
-        r = refreshed;
-      }
+      for (std::size_t i = 0; i < outcomes.size(); ++i)
+        judge(result.algorithms[i], outcomes[i], *result.exact, size);
     }
   }
   for (AlgorithmRecord& r : result.algorithms)

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/degenerate_families.hpp"
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
@@ -69,86 +70,11 @@ void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
   }
 }
 
-// Every degenerate and near-contact family of experiments/degeneracy.toml but the 10⁴–10⁵
-// point clouds, with exact contacts and gaps/overlaps of 1e-15 … 1e-3 of the size.
-constexpr const char* kDegenerateFamilies = R"(
-name = "certificates"
-seed = 20261123
-cases = 1
-[placement]
-mode = "mixed"
-gap = [1e-15, 1e-3]
-depth = [1e-15, 1e-3]
-[[family]]
-name = "touching"
-shape = "contact"
-contact = "any"
-[family.placement]
-mode = "touching"
-[[family]]
-name = "contact-eps"
-shape = "contact"
-contact = "any"
-weight = 2
-[[family]]
-name = "parallel-edges"
-shape = "contact"
-contact = "parallel-edges"
-angle = [1e-9, 1e-2]
-[[family]]
-name = "flat-vs-box"
-shape_a = "flat_points"
-shape_b = "box"
-vertices_a = [3, 32]
-rotate = "axes"
-[[family]]
-name = "flat-vs-flat"
-shape = "flat_points"
-vertices = [3, 32]
-rotate = "axes"
-[[family]]
-name = "collinear-vs-box"
-shape_a = "collinear_points"
-shape_b = "box"
-vertices_a = [2, 16]
-rotate = "axes"
-[[family]]
-name = "collinear-vs-collinear"
-shape = "collinear_points"
-vertices = [2, 16]
-rotate = "random"
-[[family]]
-name = "duplicates"
-shape = "duplicate_points"
-vertices = [4, 32]
-[[family]]
-name = "point-vs-sphere"
-shape_a = "single_point"
-shape_b = "sphere_points"
-vertices_b = [4, 32]
-[[family]]
-name = "slivers"
-shape = "sliver"
-aspect = [10, 1e6]
-[[family]]
-name = "scale-disparity"
-shape = "sphere_points"
-vertices = [8, 32]
-scale = 1e4
-scale_b = 1e-8
-[[family]]
-name = "large-offsets"
-shape = "sphere_points"
-vertices = [8, 32]
-offset = [1e3, 1e9]
-[[family]]
-name = "tiny"
-shape = "cube_points"
-vertices = [8, 32]
-scale = 1e-9
-[[algorithm]]
-name = "gjk-johnson"
-)";
+/// The degenerate families (tests/support/degenerate_families.hpp), judged by the oracle alone.
+std::string degenerate_experiment() {
+  return std::string("name = \"certificates\"\nseed = 20261123\ncases = 1\n") +
+         testing::kDegenerateFamilies + "[[algorithm]]\nname = \"gjk-johnson\"\n";
+}
 
 }  // namespace
 
@@ -182,7 +108,7 @@ TEST_CASE("certified distances equal the QP's on 12000 seeded random pairs", "[p
 TEST_CASE("certified distances equal the QP's on 8000 degenerate and near-contact pairs",
           "[property][certificate]") {
   const experiment::ExperimentConfig config =
-      experiment::parse_experiment(kDegenerateFamilies, "certificate test families");
+      experiment::parse_experiment(degenerate_experiment(), "certificate test families");
   Tally t;
   std::vector<int> per_family(config.families.size(), 0);
   for (std::uint64_t i = 0; i < 8000; ++i) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 
+#include "../support/degenerate_families.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/driver.hpp"
 
@@ -24,82 +25,11 @@ namespace {
 
 constexpr std::uint64_t kCases = 12000;
 
-constexpr const char* kExperiment = R"(
-name = "degenerate-ci"
-seed = 20261123
-cases = 12000
-touching_band = 1e-10
-[placement]
-mode = "mixed"
-gap = [1e-15, 1e-3]
-depth = [1e-15, 1e-3]
-[[family]]
-name = "touching"
-shape = "contact"
-contact = "any"
-[family.placement]
-mode = "touching"
-[[family]]
-name = "contact-eps"
-shape = "contact"
-contact = "any"
-weight = 2
-[[family]]
-name = "parallel-edges"
-shape = "contact"
-contact = "parallel-edges"
-angle = [1e-9, 1e-2]
-[[family]]
-name = "flat-vs-box"
-shape_a = "flat_points"
-shape_b = "box"
-vertices_a = [3, 64]
-rotate = "axes"
-[[family]]
-name = "flat-vs-flat"
-shape = "flat_points"
-vertices = [3, 64]
-rotate = "axes"
-[[family]]
-name = "collinear-vs-box"
-shape_a = "collinear_points"
-shape_b = "box"
-vertices_a = [2, 16]
-rotate = "axes"
-[[family]]
-name = "collinear-vs-collinear"
-shape = "collinear_points"
-vertices = [2, 16]
-rotate = "random"
-[[family]]
-name = "duplicates"
-shape = "duplicate_points"
-vertices = [4, 32]
-[[family]]
-name = "point-vs-sphere"
-shape_a = "single_point"
-shape_b = "sphere_points"
-vertices_b = [4, 128]
-[[family]]
-name = "slivers"
-shape = "sliver"
-aspect = [10, 1e6]
-[[family]]
-name = "scale-disparity"
-shape = "sphere_points"
-vertices = [8, 64]
-scale = 1e4
-scale_b = 1e-8
-[[family]]
-name = "large-offsets"
-shape = "sphere_points"
-vertices = [8, 64]
-offset = [1e3, 1e9]
-[[family]]
-name = "tiny"
-shape = "cube_points"
-vertices = [8, 64]
-scale = 1e-9
+/// The families (tests/support/degenerate_families.hpp) and every gjklab algorithm.
+std::string experiment_text() {
+  return std::string("name = \"degenerate-ci\"\nseed = 20261123\ncases = 12000\n"
+                     "touching_band = 1e-10\n") +
+         testing::kDegenerateFamilies + R"(
 [[algorithm]]
 name = "gjk-bool"
 [[algorithm]]
@@ -117,6 +47,7 @@ name = "epa"
 [[algorithm]]
 name = "gjk-certified"
 )";
+}
 
 /// (family, algorithm, case id) → failure class name.
 using Failures = std::map<std::tuple<std::string, std::string, std::uint64_t>, std::string>;
@@ -151,7 +82,7 @@ Failures known_failures() {
 
 TEST_CASE("every gjklab algorithm on the degenerate families: only the listed failures",
           "[property][degenerate]") {
-  const ExperimentConfig config = parse_experiment(kExperiment, "degenerate CI families");
+  const ExperimentConfig config = parse_experiment(experiment_text(), "degenerate CI families");
   const Failures known = known_failures();
   Failures seen;
   std::map<std::tuple<std::string, std::string, std::uint64_t>, std::string> details;
