@@ -19,7 +19,6 @@ TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);
-  int variants = 0;
   for (const char* name :
        {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi", "gjk-nesterov"}) {
     INFO(name);
@@ -27,7 +26,5 @@ TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 
     CHECK_FALSE(o.intersect);
     REQUIRE(o.distance.has_value());
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
-    ++variants;
   }
-  CHECK(variants == 5);
 }

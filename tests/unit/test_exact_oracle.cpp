@@ -692,7 +692,8 @@ int compare_with_brute_force(std::uint64_t seed, int trials, int max_a, int max_
 
 TEST_CASE("exact oracle: agrees with an independent brute force on small random clouds",
           "[unit][exact]") {
-  CHECK(compare_with_brute_force(20240611, 48, 5, 4) == 48);
+  // Asserts every answer and that both answers occur (at least a tenth each).
+  compare_with_brute_force(20240611, 48, 5, 4);
 }
 
 // A longer run of the same comparison (hidden; run with "[exact-stress]").

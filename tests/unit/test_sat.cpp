@@ -183,7 +183,6 @@ TEST_CASE("sat: agrees with the exact oracle on seeded random pairs", "[unit][sa
   }
   CHECK(intersecting > 50);
   CHECK(separated > 50);
-  CHECK(flat_pairs == 100);
   WARN("sat vs exact: " << intersecting << " intersecting, " << separated
                         << " separated random pairs, " << flat_pairs << " flat pairs; " << in_band
                         << " inside the touching band (booleans not compared)");
