@@ -28,6 +28,26 @@ struct Tally {
   double worst_relative_error = 0;  // distance algorithms only
 };
 
+/// What each gjklab algorithm achieves on this sample, with a margin: the largest distance
+/// error relative to size (measured worst, about 8× below the bound) and the most queries
+/// that may stop other than converged (measured). A change that loses accuracy or converges
+/// less often fails here, long before it reaches the touching band.
+struct Accuracy {
+  double relative_error;
+  int not_converged;
+};
+const std::map<std::string, Accuracy> kAccuracy = {
+    {"gjk-johnson", {1e-14, 4}},         // measured 1.2e-15, 4 no_progress
+    {"gjk-johnson-backup", {1e-14, 4}},  // measured 1.2e-15
+    {"gjk-voronoi", {1e-14, 1}},         // measured 1.1e-15
+    {"epa", {1e-14, 4}},                 // its GJK phase is gjk-johnson's
+    {"gjk-sv", {1e-12, 0}},              // measured 1.1e-13
+    {"gjk-nesterov", {1e-12, 1}},        // measured 1.1e-13
+    {"gjk-certified", {0, 0}},           // exact: the correctly rounded distance itself
+    {"gjk-bool", {0, 0}},
+    {"sat", {0, 0}},
+};
+
 }  // namespace
 
 TEST_CASE("GJK agrees with the exact oracle on 2000 seeded random pairs", "[property]") {
@@ -102,6 +122,12 @@ TEST_CASE("GJK agrees with the exact oracle on 2000 seeded random pairs", "[prop
   // The sample must exercise both answers.
   CHECK(intersecting > kPairs / 4);
   CHECK(separated > kPairs / 4);
+  for (const auto& [name, accuracy] : kAccuracy) {
+    INFO(name);
+    REQUIRE(tallies.count(name));
+    CHECK(tallies[name].worst_relative_error <= accuracy.relative_error);
+    CHECK(tallies[name].terminations_not_converged <= accuracy.not_converged);
+  }
   for (const auto& [name, t] : tallies) {
     WARN(name << ": wrong booleans outside the band " << t.wrong_outside_band << "/" << kPairs
               << ", terminations other than converged " << t.terminations_not_converged
