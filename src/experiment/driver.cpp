@@ -13,11 +13,11 @@
 #include <thread>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/exact/witness.hpp"
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/certified.hpp"
 #include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/judging.hpp"
 #include "gjklab/experiment/provenance.hpp"
 
 namespace gjklab::experiment {
@@ -34,28 +34,6 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-ContactClass classify(const exact::OracleAnswer& answer, double band) {
-  if (!answer.intersect)
-    return answer.distance <= band ? ContactClass::touching_band : ContactClass::separated;
-  if (answer.depth && *answer.depth <= band) return ContactClass::touching_band;
-  return ContactClass::intersecting;
-}
-
-ExactRecord exact_record(const exact::OracleAnswer& a, double band) {
-  ExactRecord r;
-  r.intersect = a.intersect;
-  r.distance = a.distance;
-  r.distance2_num = a.distance_squared.numerator;
-  r.distance2_den = a.distance_squared.denominator;
-  if (a.depth) r.depth = *a.depth;
-  r.hull_vertices_a = a.hull_vertices_a;
-  r.hull_vertices_b = a.hull_vertices_b;
-  r.contact = classify(a, band);
-  r.method = a.method;
-  r.depth_method = a.depth_method;
-  return r;
-}
-
 /// Median wall time of `repetitions` runs of one query, in ns.
 double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                   const SweptRadii& radii, const AlgorithmOptions& options, int repetitions) {
@@ -69,54 +47,6 @@ double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polyt
     ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
   }
   return median(std::move(ns));
-}
-
-/// The algorithm's own answer, as recorded (its errors are judge()'s).
-AlgorithmRecord algorithm_record(const Outcome& o) {
-  AlgorithmRecord r;
-  r.intersect = o.intersect;
-  if (o.distance) r.distance = *o.distance;
-  if (o.depth) r.depth = *o.depth;
-  r.iterations = o.iterations;
-  r.support_calls = o.support_calls;
-  r.termination = o.termination;
-  return r;
-}
-
-/// Sets the record's errors and correctness against the exact answer, all of them, so that a
-/// record judged again (after the exact depth arrived) keeps nothing stale.
-void judge(AlgorithmRecord& r, const Outcome& o, const ExactRecord& exact, double size) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  r.abs_error = o.distance ? std::abs(*o.distance - exact.distance) : kNaN;
-  r.rel_error = r.abs_error / size;
-  r.boolean_correct =
-      exact.contact == ContactClass::touching_band || o.intersect == exact.intersect;
-  const bool depths = o.depth && o.intersect && exact.intersect && !std::isnan(exact.depth);
-  r.depth_abs_error = depths ? std::abs(*o.depth - exact.depth) : kNaN;
-  r.depth_rel_error = r.depth_abs_error / size;
-}
-
-/// The algorithm's witness points and, for polytopes with an exact answer, their exact errors.
-void add_witnesses(AlgorithmRecord& r, const Outcome& o, const exact::OracleAnswer* exact,
-                   std::span<const Vec3> a, std::span<const Vec3> b) {
-  if (!o.witness_a || !o.witness_b) return;
-  r.witness_a = *o.witness_a;
-  r.witness_b = *o.witness_b;
-  if (!exact || exact->swept || !r.witness_a.allFinite() || !r.witness_b.allFinite()) return;
-  r.witness_error_a = exact::distance_to_hull(a, r.witness_a);
-  r.witness_error_b = exact::distance_to_hull(b, r.witness_b);
-  if (!o.intersect)
-    r.witness_distance_error =
-        exact::distance_difference(r.witness_a, r.witness_b, exact->distance_squared);
-}
-
-/// A case is kept with its geometry when any answer is wrong or any query did not converge.
-bool worth_keeping(const CaseResult& r, double band) {
-  for (const AlgorithmRecord& a : r.algorithms) {
-    if (!a.boolean_correct || a.termination != Termination::converged) return true;
-    if (!std::isnan(a.rel_error) && a.rel_error > band) return true;
-  }
-  return false;
 }
 
 class Progress {

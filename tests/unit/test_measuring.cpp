@@ -1,11 +1,13 @@
 // Expected values of the code that turns answers into published numbers, from hand-made
-// records: the failure classes, the run and oracle-method summaries.
+// records: contact classes, judged records, witness errors, kept geometry, failure classes,
+// the run and oracle-method summaries.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "gjklab/experiment/judging.hpp"
 #include "gjklab/experiment/records.hpp"
 #include "gjklab/experiment/summary.hpp"
 
@@ -133,4 +135,126 @@ TEST_CASE("oracle methods: certified fractions per family", "[unit][measuring]")
         std::string::npos);
   CHECK(table.str().find("all                            5     80.00%       2     50.00%") !=
         std::string::npos);
+}
+
+TEST_CASE("contact class and exact record from a hand-made exact answer", "[unit][measuring]") {
+  exact::OracleAnswer apart;
+  apart.distance_squared = {"1", "4"};
+  apart.distance = 0.5;
+  apart.method = exact::AnswerMethod::certified;
+  CHECK(contact_class(apart, 0.25) == ContactClass::separated);
+  CHECK(contact_class(apart, 0.5) == ContactClass::touching_band);  // the band is inclusive
+  exact::OracleAnswer deep;
+  deep.intersect = true;
+  deep.distance_squared = {"0", "1"};
+  CHECK(contact_class(deep, 0.1) == ContactClass::intersecting);  // no depth: intersecting
+  deep.depth = 0.05;
+  deep.depth_squared = exact::Rational{"1", "400"};
+  deep.depth_method = exact::AnswerMethod::qp;
+  CHECK(contact_class(deep, 0.1) == ContactClass::touching_band);
+  CHECK(contact_class(deep, 0.01) == ContactClass::intersecting);
+
+  const ExactRecord r = exact_record(apart, 0.25);
+  CHECK_FALSE(r.intersect);
+  CHECK(r.distance == 0.5);
+  CHECK(r.distance2_num == "1");
+  CHECK(r.distance2_den == "4");
+  CHECK(std::isnan(r.depth));
+  CHECK(r.contact == ContactClass::separated);
+  CHECK(r.method == exact::AnswerMethod::certified);
+  CHECK(r.depth_method == exact::AnswerMethod::none);
+  const ExactRecord d = exact_record(deep, 0.01);
+  CHECK(d.depth == 0.05);
+  CHECK(d.depth_method == exact::AnswerMethod::qp);
+}
+
+TEST_CASE("judge: errors and correctness of an answer against the exact one",
+          "[unit][measuring]") {
+  ExactRecord exact = exact_answer(false, ContactClass::separated);
+  exact.distance = 2.0;
+  Outcome o;
+  o.distance = 2.5;
+  o.iterations = 7;
+  o.termination = Termination::no_progress;
+  AlgorithmRecord r = algorithm_record(o);
+  CHECK(r.iterations == 7);
+  CHECK(r.termination == Termination::no_progress);
+  CHECK(std::isnan(r.abs_error));  // not judged yet
+  judge(r, o, exact, 4.0);
+  CHECK(r.abs_error == 0.5);
+  CHECK(r.rel_error == 0.125);
+  CHECK(r.boolean_correct);
+  CHECK(std::isnan(r.depth_abs_error));
+
+  // A boolean algorithm (no distance) that says intersect for a separated pair.
+  Outcome boolean;
+  boolean.intersect = true;
+  AlgorithmRecord b = algorithm_record(boolean);
+  judge(b, boolean, exact, 4.0);
+  CHECK_FALSE(b.boolean_correct);
+  CHECK(std::isnan(b.abs_error));
+  CHECK(std::isnan(b.rel_error));
+  exact.contact = ContactClass::touching_band;  // either answer is right inside the band
+  judge(b, boolean, exact, 4.0);
+  CHECK(b.boolean_correct);
+
+  // Depth errors once the exact depth is known; judged again, nothing stale remains.
+  ExactRecord deep = exact_answer(true, ContactClass::intersecting);
+  Outcome epa;
+  epa.intersect = true;
+  epa.distance = 0.0;
+  epa.depth = 0.75;
+  AlgorithmRecord e = algorithm_record(epa);
+  judge(e, epa, deep, 2.0);
+  CHECK(std::isnan(e.depth_abs_error));  // the exact depth was not computed
+  deep.depth = 0.5;
+  judge(e, epa, deep, 2.0);
+  CHECK(e.depth_abs_error == 0.25);
+  CHECK(e.depth_rel_error == 0.125);
+}
+
+TEST_CASE("worth_keeping: wrong, unconverged or inaccurate answers keep their geometry",
+          "[unit][measuring]") {
+  CaseResult r;
+  r.algorithms.push_back(answer(false, 1e-12));
+  CHECK_FALSE(worth_keeping(r, kBand));
+  r.algorithms.push_back(answer(false, 2e-10));  // above the band
+  CHECK(worth_keeping(r, kBand));
+  r.algorithms.back() = answer(false, 1e-12, Termination::step_limit);
+  CHECK(worth_keeping(r, kBand));
+  r.algorithms.back() = answer(false, std::nan(""));
+  r.algorithms.back().boolean_correct = false;
+  CHECK(worth_keeping(r, kBand));
+}
+
+TEST_CASE("witness errors recorded from an outcome's witness points", "[unit][measuring]") {
+  const std::vector<Vec3> a = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const std::vector<Vec3> b = {{3, 0, 0}, {4, 0, 0}};
+  exact::OracleAnswer exact_answer;
+  exact_answer.distance_squared = {"4", "1"};
+  exact_answer.distance = 2;
+  Outcome o;
+  o.witness_a = Vec3(1, 0, 0);
+  o.witness_b = Vec3(3.5, 0, 0);  // on B, but 2.5 from the witness on A
+  AlgorithmRecord r = algorithm_record(o);
+  add_witnesses(r, o, &exact_answer, a, b);
+  CHECK(r.witness_a == Vec3(1, 0, 0));
+  CHECK(r.witness_error_a == 0);
+  CHECK(r.witness_error_b == 0);
+  CHECK(r.witness_distance_error == 0.5);
+  o.witness_a = Vec3(-0.75, 0, 0);  // 0.75 from A (its nearest point is the origin)
+  AlgorithmRecord off = algorithm_record(o);
+  add_witnesses(off, o, &exact_answer, a, b);
+  CHECK(off.witness_error_a == 0.75);
+  CHECK(off.witness_distance_error == 2.25);  // |4.25 − 2|
+  // No oracle, or no witnesses: NaN.
+  AlgorithmRecord none = algorithm_record(o);
+  add_witnesses(none, o, nullptr, a, b);
+  CHECK(none.witness_a == Vec3(-0.75, 0, 0));
+  CHECK(std::isnan(none.witness_error_a));
+  Outcome boolean;
+  AlgorithmRecord no_witness = algorithm_record(boolean);
+  add_witnesses(no_witness, boolean, &exact_answer, a, b);
+  CHECK(std::isnan(no_witness.witness_a.x()));
+  CHECK(std::isnan(no_witness.witness_distance_error));
 }
