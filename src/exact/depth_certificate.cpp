@@ -95,8 +95,7 @@ bool is_closed_sphere(const std::vector<std::array<int, 3>>& faces, std::size_t 
     if (e != edge || length != outgoing[v]) return false;
     outgoing[v] = -1;
   }
-  const auto used = static_cast<long>(
-      std::count(outgoing.begin(), outgoing.end(), -1));
+  const auto used = static_cast<long>(std::count(outgoing.begin(), outgoing.end(), -1));
   const long edges = static_cast<long>(edge_face.size()) / 2;
   return used - edges + static_cast<long>(faces.size()) == 2;
 }
@@ -105,8 +104,7 @@ bool is_closed_sphere(const std::vector<std::array<int, 3>>& faces, std::size_t 
 /// two vertices coincide.
 std::optional<std::vector<PolytopeVertex>> polytope_vertices(std::span<const Vec3> a,
                                                              std::span<const Vec3> b,
-                                                             const DepthHint& hint,
-                                                             long exponent) {
+                                                             const DepthHint& hint, long exponent) {
   std::vector<PolytopeVertex> out;
   out.reserve(hint.vertices.size());
   for (const IndexPair& p : hint.vertices) {

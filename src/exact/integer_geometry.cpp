@@ -62,7 +62,7 @@ Int to_integer(double x, long exponent) {
   if (x == 0) return 0;
   int e = 0;
   const double fraction = std::frexp(x, &e);  // x = fraction·2^e, 0.5 ≤ |fraction| < 1
-  Int out(std::ldexp(fraction, 53));           // an integer of at most 53 bits, exact
+  Int out(std::ldexp(fraction, 53));          // an integer of at most 53 bits, exact
   const long shift = static_cast<long>(e) - 53 - exponent;
   if (shift >= 0) {
     mpz_mul_2exp(out.get_mpz_t(), out.get_mpz_t(), static_cast<mp_bitcnt_t>(shift));
@@ -74,8 +74,7 @@ Int to_integer(double x, long exponent) {
 }
 
 IntVec to_integer(const Vec3& p, long exponent) {
-  return {to_integer(p.x(), exponent), to_integer(p.y(), exponent),
-          to_integer(p.z(), exponent)};
+  return {to_integer(p.x(), exponent), to_integer(p.y(), exponent), to_integer(p.z(), exponent)};
 }
 
 Extreme extreme_point(std::span<const Vec3> cloud, const IntVec& n, const IntegerFrame& frame,
@@ -88,8 +87,7 @@ Extreme extreme_point(std::span<const Vec3> cloud, const IntVec& n, const Intege
   const std::array<double, 3> d = scaled_direction(n);
   const double sign = maximise ? -1.0 : 1.0;
   const double norm1 = std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]);
-  const double bound =
-      8 * kUnitRoundoff * norm1 * frame.max_abs + 0x1p-1070 * (1 + frame.max_abs);
+  const double bound = 8 * kUnitRoundoff * norm1 * frame.max_abs + 0x1p-1070 * (1 + frame.max_abs);
   std::vector<std::size_t> candidates;
   if (std::isfinite(bound)) {
     double best = std::numeric_limits<double>::infinity();

@@ -125,14 +125,15 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
 
   std::optional<DistanceCertificate> certificate;
   if (options.certificates)
-    certificate = certify_distance(a, b, hints.distance.value_or(DistanceHint{}),
-                                   options.certificate_steps);
+    certificate =
+        certify_distance(a, b, hints.distance.value_or(DistanceHint{}), options.certificate_steps);
   if (certificate) {
     answer.method = AnswerMethod::certified;
     answer.distance_squared = certificate->distance_squared;
     answer.witness_a = certificate->witness_a;
     answer.witness_b = certificate->witness_b;
-    if (options.verify) audit("squared distance", answer.distance_squared, qp_distance_squared(hulls));
+    if (options.verify)
+      audit("squared distance", answer.distance_squared, qp_distance_squared(hulls));
   } else {
     answer.method = AnswerMethod::qp;
     answer.distance_squared = qp_distance_squared(hulls);
@@ -143,7 +144,8 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
   if (options.depth && answer.intersect) {
     std::optional<Rational> depth2;
     std::optional<DepthCertificate> certificate;
-    if (options.certificates && hints.depth) certificate = certify_depth(a, b, *hints.depth, options.certificate_steps);
+    if (options.certificates && hints.depth)
+      certificate = certify_depth(a, b, *hints.depth, options.certificate_steps);
     if (certificate) {
       depth2 = certificate->depth_squared;
       answer.depth_method = AnswerMethod::certified;
@@ -157,8 +159,10 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
     answer.depth = sqrt_to_double(*depth2);
   }
 
-  answer.hull_vertices_a = options.hull_vertices ? static_cast<int>(hulls.of_a().extreme_points.size()) : -1;
-  answer.hull_vertices_b = options.hull_vertices ? static_cast<int>(hulls.of_b().extreme_points.size()) : -1;
+  answer.hull_vertices_a =
+      options.hull_vertices ? static_cast<int>(hulls.of_a().extreme_points.size()) : -1;
+  answer.hull_vertices_b =
+      options.hull_vertices ? static_cast<int>(hulls.of_b().extreme_points.size()) : -1;
   return answer;
 }
 

@@ -76,8 +76,7 @@ void check_radius(double radius, const char* name) {
 }  // namespace
 
 OracleAnswer solve_swept(std::span<const Vec3> a, std::span<const Vec3> b, double radius_a,
-                         double radius_b, const OracleOptions& options,
-                         const OracleHints& hints) {
+                         double radius_b, const OracleOptions& options, const OracleHints& hints) {
   check_radius(radius_a, "shape A");
   check_radius(radius_b, "shape B");
   OracleAnswer answer = solve(a, b, options, hints);

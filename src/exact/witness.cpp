@@ -43,7 +43,8 @@ double distance_difference(const Vec3& p, const Vec3& q, const Rational& distanc
     mpq_mul(x.get(), x.get(), x.get());
     mpq_add(s.get(), s.get(), x.get());
   }
-  if (mpq_set_str(t.get(), (distance_squared.numerator + "/" + distance_squared.denominator).c_str(),
+  if (mpq_set_str(t.get(),
+                  (distance_squared.numerator + "/" + distance_squared.denominator).c_str(),
                   10) != 0)
     throw std::invalid_argument("witness: malformed rational");
   mpq_canonicalize(t.get());

@@ -180,9 +180,8 @@ struct ArchiveWriter::Impl {
         all.insert(all.end(),
                    {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
                     &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure,
-                    &a.depth, &a.depth_abs_error, &a.depth_rel_error, &a.witness_a,
-                    &a.witness_b, &a.witness_error_a, &a.witness_error_b,
-                    &a.witness_distance_error});
+                    &a.depth, &a.depth_abs_error, &a.depth_rel_error, &a.witness_a, &a.witness_b,
+                    &a.witness_error_a, &a.witness_error_b, &a.witness_distance_error});
       for (TraceColumns& t : traces)
         for (h5::Column* c : t.all())
           all.push_back(c);

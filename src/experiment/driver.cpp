@@ -131,8 +131,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     const bool depth_algorithm =
         std::any_of(config.algorithms.begin(), config.algorithms.end(),
                     [](const AlgorithmSpec& s) { return find_algorithm(s.name)->depth; });
-    answer = solve_certified(a, b, radii, config.oracle_options(config.depth || depth_algorithm))
-                 .answer;
+    answer =
+        solve_certified(a, b, radii, config.oracle_options(config.depth || depth_algorithm)).answer;
     result.exact = exact_record(*answer, band);
   }
   std::vector<Outcome> outcomes;

@@ -78,7 +78,8 @@ std::string degenerate_experiment() {
 
 }  // namespace
 
-TEST_CASE("certified distances equal the QP's on 12000 seeded random pairs", "[property][certificate]") {
+TEST_CASE("certified distances equal the QP's on 12000 seeded random pairs",
+          "[property][certificate]") {
   testing::Rng rng(20261123);
   Tally t;
   for (int i = 0; i < 12000; ++i) {
@@ -94,8 +95,8 @@ TEST_CASE("certified distances equal the QP's on 12000 seeded random pairs", "[p
     const auto pair = testing::random_pair(rng, kind, na, nb, gap);
     compare(pair.a, pair.b, i % 6 == 1 || i % 6 == 2, "random pair " + std::to_string(i), t);
   }
-  WARN("random: " << t.certified << "/" << t.pairs << " distances certified ("
-                  << t.intersecting << " intersecting), " << t.depths_certified << "/" << t.depths
+  WARN("random: " << t.certified << "/" << t.pairs << " distances certified (" << t.intersecting
+                  << " intersecting), " << t.depths_certified << "/" << t.depths
                   << " depths certified");
   CHECK(t.intersecting > t.pairs / 4);
   CHECK(t.pairs - t.intersecting > t.pairs / 4);
@@ -117,9 +118,9 @@ TEST_CASE("certified distances equal the QP's on 8000 degenerate and near-contac
     compare(c.a, c.b, i % 4 == 0,
             config.families[c.record.family].name + " case " + std::to_string(i), t);
   }
-  WARN("degenerate: " << t.certified << "/" << t.pairs << " distances certified ("
-                      << t.intersecting << " intersecting), " << t.depths_certified << "/"
-                      << t.depths << " depths certified");
+  WARN("degenerate: " << t.certified << "/" << t.pairs << " distances certified (" << t.intersecting
+                      << " intersecting), " << t.depths_certified << "/" << t.depths
+                      << " depths certified");
   for (std::size_t f = 0; f < per_family.size(); ++f) {
     INFO(config.families[f].name);
     CHECK(per_family[f] > 100);  // every family is sampled
@@ -143,8 +144,8 @@ TEST_CASE("oracle cost per case against the vertex count, QP and certified", "[.
     const int pairs = n >= 2048 ? 2 : 6;
     std::vector<double> qp_us, certified_us;
     for (int p = 0; p < pairs; ++p) {
-      const auto pair = testing::random_pair(rng, testing::CloudKind::sphere, n, n,
-                                             p % 2 ? -0.3 : 0.05);
+      const auto pair =
+          testing::random_pair(rng, testing::CloudKind::sphere, n, n, p % 2 ? -0.3 : 0.05);
       const Polytope a(pair.a), b(pair.b);
       const exact::OracleOptions qp{.certificates = false, .hull_vertices = false};
       const exact::OracleOptions certified{.hull_vertices = false};

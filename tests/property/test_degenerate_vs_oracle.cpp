@@ -27,8 +27,9 @@ constexpr std::uint64_t kCases = 12000;
 
 /// The families (tests/support/degenerate_families.hpp) and every gjklab algorithm.
 std::string experiment_text() {
-  return std::string("name = \"degenerate-ci\"\nseed = 20261123\ncases = 12000\n"
-                     "touching_band = 1e-10\n") +
+  return std::string(
+             "name = \"degenerate-ci\"\nseed = 20261123\ncases = 12000\n"
+             "touching_band = 1e-10\n") +
          testing::kDegenerateFamilies + R"(
 [[algorithm]]
 name = "gjk-bool"

@@ -83,17 +83,37 @@ TEST_CASE("distance certificate: hand-made exact cases", "[unit][certificate]") 
     Vec3 witness_a, witness_b;
   };
   const std::vector<Case> cases = {
-      {"crossing edges at distance 1", {{-1, 0, 0}, {1, 0, 0}}, {{0, -1, 1}, {0, 1, 1}},
-       rational("1"), {0, 0, 0}, {0, 0, 1}},
-      {"vertex over a face", {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, -1}}, {{1, 1, 3}},
-       rational("9"), {1, 1, 0}, {1, 1, 3}},
+      {"crossing edges at distance 1",
+       {{-1, 0, 0}, {1, 0, 0}},
+       {{0, -1, 1}, {0, 1, 1}},
+       rational("1"),
+       {0, 0, 0},
+       {0, 0, 1}},
+      {"vertex over a face",
+       {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, -1}},
+       {{1, 1, 3}},
+       rational("9"),
+       {1, 1, 0},
+       {1, 1, 3}},
       {"single points", {{0, 0, 0}}, {{1, 2, 2}}, rational("9"), {0, 0, 0}, {1, 2, 2}},
-      {"collinear segments", {{0, 0, 0}, {1, 0, 0}, {0.5, 0, 0}}, {{4, 0, 0}, {3, 0, 0}},
-       rational("4"), {1, 0, 0}, {3, 0, 0}},
-      {"coplanar triangles 1/2 apart", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
-       {{1.5, 0, 0}, {2, 1, 0}, {2, -1, 0}}, rational("1", "4"), {1, 0, 0}, {1.5, 0, 0}},
-      {"edge to edge at a skew angle", {{0, 0, 0}, {2, 2, 0}}, {{2, 0, 1}, {0, 2, 1}},
-       rational("1"), {1, 1, 0}, {1, 1, 1}},
+      {"collinear segments",
+       {{0, 0, 0}, {1, 0, 0}, {0.5, 0, 0}},
+       {{4, 0, 0}, {3, 0, 0}},
+       rational("4"),
+       {1, 0, 0},
+       {3, 0, 0}},
+      {"coplanar triangles 1/2 apart",
+       {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+       {{1.5, 0, 0}, {2, 1, 0}, {2, -1, 0}},
+       rational("1", "4"),
+       {1, 0, 0},
+       {1.5, 0, 0}},
+      {"edge to edge at a skew angle",
+       {{0, 0, 0}, {2, 2, 0}},
+       {{2, 0, 1}, {0, 2, 1}},
+       rational("1"),
+       {1, 1, 0},
+       {1, 1, 1}},
   };
   for (const Case& c : cases) {
     INFO(c.name);
@@ -111,12 +131,12 @@ TEST_CASE("distance certificate: hand-made exact cases", "[unit][certificate]") 
 TEST_CASE("distance certificate: touching and crossing pairs are proven intersecting",
           "[unit][certificate]") {
   const std::vector<std::pair<Cloud, Cloud>> pairs = {
-      {box({0, 0, 0}), box({2, 0.25, 0.5})},                         // faces touching exactly
-      {box({0, 0, 0}), box({2, 2, 2})},                              // corners touching
-      {{{-1, 0, 0}, {1, 0, 0}}, {{0, -1, 0}, {0, 1, 0}}},            // crossing segments
-      {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {{1, 1, 0}, {3, 3, 0}}},   // coplanar: edge meets edge
-      {{{0, 0, 0}}, {{0, 0, 0}, {1, 0, 0}}},                         // point on a segment's end
-      {box({0, 0, 0}), {{0.3, 0.1, -0.2}}},                          // point inside a box
+      {box({0, 0, 0}), box({2, 0.25, 0.5})},                        // faces touching exactly
+      {box({0, 0, 0}), box({2, 2, 2})},                             // corners touching
+      {{{-1, 0, 0}, {1, 0, 0}}, {{0, -1, 0}, {0, 1, 0}}},           // crossing segments
+      {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {{1, 1, 0}, {3, 3, 0}}},  // coplanar: edge meets edge
+      {{{0, 0, 0}}, {{0, 0, 0}, {1, 0, 0}}},                        // point on a segment's end
+      {box({0, 0, 0}), {{0.3, 0.1, -0.2}}},                         // point inside a box
   };
   for (const auto& [a, b] : pairs) {
     const auto cert = exact::certify_distance(a, b, gjk_hint(a, b));

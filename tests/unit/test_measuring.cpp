@@ -73,15 +73,14 @@ TEST_CASE("classify_failure: every class from a hand-made record", "[unit][measu
         FailureClass::step_limit);
 }
 
-TEST_CASE("summary: counts, medians and terminations from hand-made results",
-          "[unit][measuring]") {
+TEST_CASE("summary: counts, medians and terminations from hand-made results", "[unit][measuring]") {
   SummaryBuilder builder({"alg"});
   // Five cases: relative errors 1e-16 … 5e-16, one wrong boolean, one step limit.
   for (int i = 1; i <= 5; ++i) {
     CaseResult r;
     r.exact = exact_answer(false, i == 5 ? ContactClass::touching_band : ContactClass::separated);
-    AlgorithmRecord a = answer(false, i * 1e-16, i == 4 ? Termination::step_limit
-                                                         : Termination::converged);
+    AlgorithmRecord a =
+        answer(false, i * 1e-16, i == 4 ? Termination::step_limit : Termination::converged);
     a.iterations = i;
     a.boolean_correct = i != 3;
     r.algorithms.push_back(a);
@@ -168,8 +167,7 @@ TEST_CASE("contact class and exact record from a hand-made exact answer", "[unit
   CHECK(d.depth_method == exact::AnswerMethod::qp);
 }
 
-TEST_CASE("judge: errors and correctness of an answer against the exact one",
-          "[unit][measuring]") {
+TEST_CASE("judge: errors and correctness of an answer against the exact one", "[unit][measuring]") {
   ExactRecord exact = exact_answer(false, ContactClass::separated);
   exact.distance = 2.0;
   Outcome o;
