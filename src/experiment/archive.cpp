@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -221,8 +222,9 @@ struct ArchiveWriter::Impl {
   void write(std::span<const CaseResult> results);
   void append_traces(TraceColumns& c, std::span<const CaseResult> rs, std::size_t algorithm);
 
-  /// Records how many rows every group holds and flushes the file: an interrupted run can be
-  /// read back (and resumed) up to the last checkpoint even if a later write was cut off.
+  /// Records how many rows every group holds, flushes the file and snapshots it: an
+  /// interrupted run can be read back (and resumed) up to the last checkpoint, or from the
+  /// snapshot when a kill cut a later write short.
   void checkpoint() {
     const hid_t r = root.get();
     h5::write_attr_u64(cx, r, "/", "checkpoint_cases", columns->cases.case_id.rows());
@@ -233,7 +235,31 @@ struct ArchiveWriter::Impl {
       h5::write_attr_u64(cx, r, "/", "checkpoint_traces_" + std::to_string(k),
                          columns->traces[k].case_id.rows());
     cx.check(H5Fflush(root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
+    snapshot();
   }
+
+  /// A copy of the flushed file (FILE.tmp.checkpoint, replaced atomically). A process killed
+  /// in the middle of a write can leave chunks of rows written before the last checkpoint half
+  /// rewritten (HDF5 rewrites a partly filled chunk in place), and the file unreadable; the
+  /// copy is then what `--resume` reads. A copy is skipped until 20 times the last copy's
+  /// duration has passed since it, which keeps copying near 5 % of the run however large the
+  /// archive grows.
+  void snapshot() {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    if (last_snapshot && start - *last_snapshot < 20 * last_copy) return;
+    fs::path fresh = snapshot_path(temp_path);
+    fresh += ".new";
+    std::error_code ec;
+    fs::copy_file(temp_path, fresh, fs::copy_options::overwrite_existing, ec);
+    if (!ec) sync_file(fresh);
+    if (!ec) fs::rename(fresh, snapshot_path(temp_path), ec);
+    if (ec) cx.error("cannot write the checkpoint copy " + fresh.string() + ": " + ec.message());
+    last_snapshot = Clock::now();
+    last_copy = *last_snapshot - start;
+  }
+  std::optional<std::chrono::steady_clock::time_point> last_snapshot;
+  std::chrono::steady_clock::duration last_copy{};
 };
 
 void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
@@ -588,6 +614,9 @@ void ArchiveWriter::finish(const std::string& end_time, bool complete) {
   h5::write_attr_u8(w.cx, w.root.get(), "/", "complete", whole ? 1 : 0);
   w.cx.check(w.root.close(), "cannot close group /");
   w.cx.check(w.file.close(), "cannot close the file");
+  // Closed cleanly, the temporary file is whole up to its last checkpoint: no copy is needed.
+  std::error_code removed;
+  fs::remove(snapshot_path(w.temp_path), removed);
   if (complete && !whole)
     w.cx.error("an earlier write failed; the incomplete archive stays at " + w.temp_path.string());
   if (!whole) return;

@@ -282,6 +282,27 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   return run_cases(config, resolved, writer, {}, total);
 }
 
+namespace {
+
+/// The interrupted run's archive: FILE.tmp, or, when a kill left it unreadable (a write cut
+/// short), the copy taken at a checkpoint.
+Archive read_interrupted(const std::filesystem::path& temporary) {
+  try {
+    return read_archive(temporary);
+  } catch (const std::exception& unreadable) {
+    const std::filesystem::path copy = snapshot_path(temporary);
+    if (!std::filesystem::exists(copy)) throw;
+    try {
+      return read_archive(copy);
+    } catch (const std::exception& also) {
+      throw std::runtime_error(std::string(unreadable.what()) + "; its checkpoint copy too: " +
+                               also.what());
+    }
+  }
+}
+
+}  // namespace
+
 RunReport resume_experiment(const std::filesystem::path& path, const RunOptions& options) {
   // The interrupted archive: FILE.tmp, named either way.
   std::filesystem::path temporary = path;
@@ -290,7 +311,7 @@ RunReport resume_experiment(const std::filesystem::path& path, const RunOptions&
     throw std::runtime_error(
         temporary.string() + ": no interrupted run to resume" +
         (std::filesystem::exists(path) ? " (" + path.string() + " is a finished archive)" : ""));
-  Archive prior = read_archive(temporary);
+  Archive prior = read_interrupted(temporary);
   if (prior.complete) throw std::runtime_error(temporary.string() + " is already complete");
   const ExperimentConfig config =
       parse_experiment(prior.header.experiment_text, temporary.string() + " (archived experiment)");
@@ -300,7 +321,10 @@ RunReport resume_experiment(const std::filesystem::path& path, const RunOptions&
   // The finished cases are rewritten into a fresh temporary file (identical to what an
   // uninterrupted run writes); the interrupted file is kept aside until that succeeds.
   const std::filesystem::path aside = temporary.string() + ".partial";
+  const std::filesystem::path copy_aside = aside.string() + ".checkpoint";
   std::filesystem::rename(temporary, aside);
+  if (std::filesystem::exists(snapshot_path(temporary)))
+    std::filesystem::rename(snapshot_path(temporary), copy_aside);
   ArchiveHeader header = prior.header;
   header.provenance = build_provenance();
   RunOptions resolved = options;
@@ -313,6 +337,7 @@ RunReport resume_experiment(const std::filesystem::path& path, const RunOptions&
     report.resumed_cases = finished.size();
   }
   std::filesystem::remove(aside);
+  std::filesystem::remove(copy_aside);
   return report;
 }
 

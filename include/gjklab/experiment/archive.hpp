@@ -50,6 +50,15 @@ struct ArchiveHeader {
 };
 
 /// Writes one archive. Not thread-safe (see above): use it from one thread.
+/// The copy of an interrupted run's temporary archive taken at a checkpoint ("FILE.tmp" →
+/// "FILE.tmp.checkpoint"), which `--resume` reads when a kill left the temporary file
+/// unreadable.
+inline std::filesystem::path snapshot_path(const std::filesystem::path& temporary) {
+  std::filesystem::path p = temporary;
+  p += ".checkpoint";
+  return p;
+}
+
 class ArchiveWriter {
  public:
   /// Checks before any work, then creates "<final_path>.tmp" (replacing a stale one) and writes

@@ -1,0 +1,134 @@
+// `gjklab run` killed for real (SIGKILL, SIGINT) at several points, then `--resume`d: the
+// finished archive equals an uninterrupted run's, dataset by dataset and timing aside,
+// including the traces and the kept geometry that straddle checkpoints.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Near-contact and parallel-edge pairs, so that failing queries keep traces and geometry in
+// most checkpoints; timed repetitions make the run long enough to be interrupted.
+constexpr const char* kExperiment = R"(name = "resume-cli"
+seed = 31
+cases = 1500
+threads = 2
+[trace]
+mode = "failing"
+[timing]
+enabled = true
+repetitions = 15
+[placement]
+mode = "mixed"
+gap = [1e-15, 1e-3]
+depth = [1e-15, 1e-3]
+[[family]]
+name = "parallel-edges"
+shape = "contact"
+contact = "parallel-edges"
+angle = [1e-9, 1e-2]
+[[family]]
+name = "grazing"
+shape = "sphere_points"
+vertices = [8, 64]
+[[algorithm]]
+name = "gjk-johnson"
+[[algorithm]]
+name = "gjk-sv"
+[[algorithm]]
+name = "gjk-bool"
+)";
+
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+/// Starts `gjklab run` with the arguments, its output discarded; returns its pid.
+pid_t start(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    std::vector<char*> argv;
+    static const std::string binary = GJKLAB_BINARY;
+    argv.push_back(const_cast<char*>(binary.c_str()));
+    for (const std::string& a : args)
+      argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// Waits for the process; its exit status, or 128 + the signal that ended it.
+int finish(pid_t pid) {
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/// True if the two archives hold the same datasets with the same values, timing aside.
+bool same_archives(const fs::path& a, const fs::path& b) {
+  const std::string script = std::string(GJKLAB_TESTS_DIR) + "/../tools/compare-archives";
+  const std::string command = quoted(GJKLAB_PYTHON3) + " " + quoted(script) + " --strict " +
+                              quoted(a.string()) + " " + quoted(b.string()) + " > /dev/null";
+  return std::system(command.c_str()) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("run killed by SIGKILL or SIGINT, then resumed, equals an uninterrupted run",
+          "[smoke][resume]") {
+  const fs::path dir = fs::temp_directory_path() / "gjklab-resume-cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path experiment = dir / "resume.toml";
+  std::ofstream(experiment) << kExperiment;
+  const fs::path reference = dir / "reference.h5";
+  REQUIRE(finish(start({"run", experiment.string(), "--out", reference.string()})) == 0);
+  REQUIRE(fs::exists(reference));
+
+  int resumed = 0;
+  for (const int signal : {SIGKILL, SIGINT}) {
+    for (const int delay_ms : {150, 400, 900}) {
+      INFO("signal " << signal << " after " << delay_ms << " ms");
+      const fs::path out = dir / ("run-" + std::to_string(signal) + "-" +
+                                  std::to_string(delay_ms) + ".h5");
+      fs::path temporary = out;
+      temporary += ".tmp";
+      const pid_t pid =
+          start({"run", experiment.string(), "--out", out.string(), "--checkpoint", "64"});
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+      kill(pid, signal);
+      const int status = finish(pid);
+      if (fs::exists(out)) {  // finished before the signal arrived
+        CHECK(status == 0);
+        CHECK(same_archives(reference, out));
+        continue;
+      }
+      if (!fs::exists(temporary)) continue;  // killed before the archive was created
+      // SIGINT finishes the started cases and exits 130; SIGKILL ends it at once.
+      CHECK(status == (signal == SIGINT ? 130 : 128 + SIGKILL));
+      REQUIRE(finish(start({"run", "--resume", temporary.string()})) == 0);
+      CHECK_FALSE(fs::exists(temporary));
+      REQUIRE(fs::exists(out));
+      CHECK(same_archives(reference, out));
+      ++resumed;
+    }
+  }
+  CHECK(resumed >= 2);  // some of the signals really interrupted the run
+  fs::remove_all(dir);
+}
