@@ -105,8 +105,8 @@ TEST_CASE("run killed by SIGKILL or SIGINT, then resumed, equals an uninterrupte
   for (const int signal : {SIGKILL, SIGINT}) {
     for (const int delay_ms : {150, 400, 900}) {
       INFO("signal " << signal << " after " << delay_ms << " ms");
-      const fs::path out = dir / ("run-" + std::to_string(signal) + "-" +
-                                  std::to_string(delay_ms) + ".h5");
+      const fs::path out =
+          dir / ("run-" + std::to_string(signal) + "-" + std::to_string(delay_ms) + ".h5");
       fs::path temporary = out;
       temporary += ".tmp";
       const pid_t pid =
