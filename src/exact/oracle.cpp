@@ -143,13 +143,13 @@ OracleAnswer solve(std::span<const Vec3> a, std::span<const Vec3> b, const Oracl
 
   if (options.depth && answer.intersect) {
     std::optional<Rational> depth2;
-    std::optional<DepthCertificate> certificate;
+    std::optional<DepthCertificate> depth_certificate;
     if (options.certificates && hints.depth)
-      certificate = certify_depth(a, b, *hints.depth, options.certificate_steps);
-    if (certificate) {
-      depth2 = certificate->depth_squared;
+      depth_certificate = certify_depth(a, b, *hints.depth, options.certificate_steps);
+    if (depth_certificate) {
+      depth2 = depth_certificate->depth_squared;
       answer.depth_method = AnswerMethod::certified;
-      answer.depth_normal = certificate->normal;
+      answer.depth_normal = depth_certificate->normal;
       if (options.verify) audit("squared depth", *depth2, minkowski_depth_squared(hulls));
     } else {
       answer.depth_method = AnswerMethod::qp;

@@ -295,6 +295,42 @@ TEST_CASE("depth certificate: adversarial polytopes are rebuilt or fall back, ne
   CHECK(same(*answer.depth_squared, rational("1", "4")));
 }
 
+TEST_CASE("depth certificate: a polytope that misses the origin is never certified",
+          "[unit][certificate]") {
+  // A − B is the box [−1, 1]³ moved by 0.9 along x, so the origin is 0.1 from its face
+  // x = −0.1. The hint is the tetrahedron of four of its corners (x-major order below) whose
+  // nearest face plane lies on the facet y = −1 of A − B, a supporting plane 1 from the origin:
+  // without the check that the origin is behind every face, that plane would pass as the depth.
+  Cloud a;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-1.0, 1.0})
+        a.push_back({x, y, z});
+  const Cloud b = {{-0.9, 0, 0}};
+  DepthHint hint;
+  hint.vertices = {{0, 0}, {4, 0}, {5, 0}, {6, 0}};
+  hint.faces = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  // Orient each face outward (away from the tetrahedron's centroid).
+  Vec3 centroid = Vec3::Zero();
+  for (const IndexPair& v : hint.vertices)
+    centroid += (a[v.a] - b[v.b]) / 4;
+  for (auto& f : hint.faces) {
+    const Vec3 p0 = a[hint.vertices[f[0]].a] - b[0];
+    const Vec3 n =
+        (a[hint.vertices[f[1]].a] - b[0] - p0).cross(a[hint.vertices[f[2]].a] - b[0] - p0);
+    if (n.dot(centroid - p0) > 0) std::swap(f[1], f[2]);
+  }
+  // Rebuilding from the hull of its points gives the same tetrahedron: no certificate, so the
+  // oracle falls back to the Minkowski hull (whose depth is 0.1 up to the rounding of 0.9).
+  CHECK_FALSE(exact::certify_depth(a, b, hint, 0).has_value());
+  CHECK_FALSE(exact::certify_depth(a, b, hint).has_value());
+  exact::OracleHints hints;
+  hints.depth = hint;
+  const exact::OracleAnswer answer = exact::solve(a, b, {.depth = true}, hints);
+  CHECK(answer.depth_method == AnswerMethod::qp);
+  CHECK(std::abs(*answer.depth - 0.1) < 1e-15);
+}
+
 TEST_CASE("witness errors: exact distance to the hull and to the exact distance",
           "[unit][certificate]") {
   const Cloud unit_box = box({0, 0, 0});
