@@ -515,6 +515,31 @@ std::string format_ratio(const std::optional<double>& r) {
 
 // ---- the run --------------------------------------------------------------------------------
 
+void set_case_ratios(std::vector<BenchRecord>& rows, std::span<const RatioRole> roles,
+                     const References& references) {
+  auto median_of = [&](const std::string& n) -> std::optional<double> {
+    for (const BenchRecord& r : rows)
+      if (r.algorithm == n) return r.ns_median;
+    return std::nullopt;
+  };
+  std::string fastest_peer;
+  for (const std::string& n : references.peer_distances)
+    if (auto t = median_of(n); t && (fastest_peer.empty() || *t < *median_of(fastest_peer)))
+      fastest_peer = n;
+  for (std::size_t e = 0; e < rows.size(); ++e) {
+    BenchRecord& r = rows[e];
+    std::string ref = references.fixed;
+    if (ref.empty())
+      ref = roles[e].kind == AnswerKind::boolean ? references.boolean_reference
+            : references.peer_distances.empty()  ? references.distance_reference
+                                                 : fastest_peer;
+    r.reference = ref;
+    if (auto t = median_of(ref)) r.ratio_to_reference = r.ns_median / *t;
+    if (roles[e].full_scan)
+      if (auto t = median_of(*roles[e].full_scan)) r.ratio_to_full_scan = r.ns_median / *t;
+  }
+}
+
 BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
   if (config.samples < 1) throw BenchError("samples must be at least 1");
   if (config.configurations < 1) throw BenchError("configurations must be at least 1");
@@ -610,30 +635,13 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
     for (const Case& c : cases) {
       if (progress) *progress << "bench: " << suite << " / " << c.name << "\n" << std::flush;
       std::vector<BenchRecord> rows = measure_case(c, suite_entries, config, options);
-      // Ratios within the case.
-      auto median_of = [&](const std::string& n) -> std::optional<double> {
-        for (const BenchRecord& r : rows)
-          if (r.algorithm == n) return r.ns_median;
-        return std::nullopt;
-      };
-      std::string fastest_peer;
-      for (const std::string& n : peer_distances)
-        if (auto t = median_of(n); t && (fastest_peer.empty() || *t < *median_of(fastest_peer)))
-          fastest_peer = n;
-      for (std::size_t e = 0; e < rows.size(); ++e) {
-        BenchRecord& r = rows[e];
-        const AnswerKind kind = suite_entries[e].info->kind;
-        std::string ref = config.reference;
-        if (ref.empty())
-          ref = kind == AnswerKind::boolean ? report.boolean_reference
-                : peer_distances.empty()    ? report.distance_reference
-                                            : fastest_peer;
-        r.reference = ref;
-        if (auto t = median_of(ref)) r.ratio_to_reference = r.ns_median / *t;
-        if (suite_entries[e].hill_climbing)
-          if (auto t = median_of(std::string(suite_entries[e].info->name)))
-            r.ratio_to_full_scan = r.ns_median / *t;
-      }
+      std::vector<RatioRole> roles;
+      for (const Entry& e : suite_entries)
+        roles.push_back({e.info->kind, e.hill_climbing ? std::optional<std::string>(e.info->name)
+                                                       : std::nullopt});
+      set_case_ratios(
+          rows, roles,
+          {config.reference, report.boolean_reference, report.distance_reference, peer_distances});
       for (BenchRecord& r : rows)
         report.records.push_back(std::move(r));
     }

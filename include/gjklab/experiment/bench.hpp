@@ -35,9 +35,12 @@
 #include <iosfwd>
 #include <map>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "gjklab/experiment/algorithms.hpp"
 
 namespace gjklab::experiment::bench {
 
@@ -103,6 +106,30 @@ class BenchError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// How one row of a case is compared: its answer kind and, for a hill-climbing row, the name
+/// of the same algorithm's full-scan row.
+struct RatioRole {
+  AnswerKind kind = AnswerKind::distance;
+  std::optional<std::string> full_scan;
+};
+
+/// The references of the ratios: `fixed` (--reference) when set; else `boolean_reference` for
+/// boolean rows, and for the others the fastest of `peer_distances` in the case, or
+/// `distance_reference` when no peer distance query is installed.
+struct References {
+  std::string fixed;
+  std::string boolean_reference;
+  std::string distance_reference;
+  std::vector<std::string> peer_distances;
+};
+
+/// Sets each row's reference and ratios from the medians of the same case (rows[i] has role
+/// roles[i]): ratio_to_reference = median / the reference's median, and for a hill-climbing
+/// row ratio_to_full_scan = median / its full scan's median. A missing reference leaves the
+/// ratio empty.
+void set_case_ratios(std::vector<BenchRecord>& rows, std::span<const RatioRole> roles,
+                     const References& references);
 
 /// Runs the benchmark. Progress lines (one per case) go to `progress` when it is not null.
 BenchReport run_bench(const BenchConfig& config, std::ostream* progress = nullptr);
