@@ -256,3 +256,40 @@ TEST_CASE("witness errors recorded from an outcome's witness points", "[unit][me
   CHECK(std::isnan(no_witness.witness_a.x()));
   CHECK(std::isnan(no_witness.witness_distance_error));
 }
+
+TEST_CASE("per-family table: counts per family and columns aligned for long names",
+          "[unit][measuring]") {
+  FamilySummaryBuilder builder({"short", "a-family-name-longer-than-24"},
+                               {"gjk-johnson", "gjk-johnson-backup"});
+  for (int i = 0; i < 3; ++i) {
+    CaseResult r;
+    r.record.family = i == 0 ? 0 : 1;
+    r.exact = exact_answer(false, ContactClass::separated);
+    AlgorithmRecord wrong = answer(true, 1e-12);
+    wrong.boolean_correct = false;
+    r.algorithms = {
+        answer(false, 1e-12, i == 2 ? Termination::no_progress : Termination::converged), wrong};
+    builder.add(r);
+  }
+  const auto families = builder.build();
+  REQUIRE(families.size() == 2);
+  CHECK(families[0].second.cases == 1);
+  CHECK(families[1].second.cases == 2);
+  CHECK(families[1].second.algorithms[1].wrong_booleans == 2);
+  std::ostringstream out;
+  print_family_table(out, families);
+  std::istringstream lines(out.str());
+  std::string header, line;
+  std::getline(lines, header);
+  const std::size_t cases_end = header.find("cases") + 5;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    // Every count ends where the header's "cases" ends, whatever the names' lengths.
+    CHECK(line.size() > cases_end);
+    CHECK(line[cases_end - 1] != ' ');
+    CHECK(line[cases_end] == ' ');
+  }
+  CHECK(rows == 4);
+  CHECK(out.str().find("no_progress=1") != std::string::npos);
+}
