@@ -147,21 +147,11 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       result.algorithms.back().time_ns =
           time_query(algorithm, a, b, radii, spec.options, config.repetitions);
   }
-  // A boolean that disagrees with an intersecting exact answer may be inside the touching
-  // band; only the exact depth can tell, so compute it now if it was not asked for. (A query
-  // stopped by its step limit fails by its termination anyway: its disagreement alone does
-  // not pay for the depth, the costliest exact computation, in step-limit sweeps.)
-  if (answer && answer->intersect && !answer->depth) {
-    const bool disagreement = std::any_of(
-        result.algorithms.begin(), result.algorithms.end(), [](const AlgorithmRecord& r) {
-          return !r.intersect && r.termination != Termination::step_limit;
-        });
-    if (disagreement) {
-      answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
-      result.exact = exact_record(*answer, band);
-      for (std::size_t i = 0; i < outcomes.size(); ++i)
-        judge(result.algorithms[i], outcomes[i], *result.exact, size);
-    }
+  if (answer && needs_exact_depth(*answer, result.algorithms)) {
+    answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
+    result.exact = exact_record(*answer, band);
+    for (std::size_t i = 0; i < outcomes.size(); ++i)
+      judge(result.algorithms[i], outcomes[i], *result.exact, size);
   }
   for (AlgorithmRecord& r : result.algorithms)
     r.failure = classify_failure(r, result.exact ? &*result.exact : nullptr, config.touching_band);
@@ -295,8 +285,8 @@ Archive read_interrupted(const std::filesystem::path& temporary) {
     try {
       return read_archive(copy);
     } catch (const std::exception& also) {
-      throw std::runtime_error(std::string(unreadable.what()) + "; its checkpoint copy too: " +
-                               also.what());
+      throw std::runtime_error(std::string(unreadable.what()) +
+                               "; its checkpoint copy too: " + also.what());
     }
   }
 }

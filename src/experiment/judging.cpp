@@ -1,5 +1,6 @@
 #include "gjklab/experiment/judging.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -62,6 +63,14 @@ void add_witnesses(AlgorithmRecord& r, const Outcome& o, const exact::OracleAnsw
   if (!o.intersect)
     r.witness_distance_error =
         exact::distance_difference(r.witness_a, r.witness_b, exact->distance_squared);
+}
+
+bool needs_exact_depth(const exact::OracleAnswer& answer,
+                       std::span<const AlgorithmRecord> records) {
+  if (!answer.intersect || answer.depth) return false;
+  return std::any_of(records.begin(), records.end(), [](const AlgorithmRecord& r) {
+    return !r.intersect && r.termination != Termination::step_limit;
+  });
 }
 
 bool worth_keeping(const CaseResult& r, double relative_band) {

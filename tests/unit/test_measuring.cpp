@@ -293,3 +293,20 @@ TEST_CASE("per-family table: counts per family and columns aligned for long name
   CHECK(rows == 4);
   CHECK(out.str().find("no_progress=1") != std::string::npos);
 }
+
+TEST_CASE("needs_exact_depth: a 'separated' answer to an intersecting pair asks for the depth",
+          "[unit][measuring]") {
+  exact::OracleAnswer deep;
+  deep.intersect = true;
+  std::vector<AlgorithmRecord> agree = {answer(true, 0)};
+  CHECK_FALSE(needs_exact_depth(deep, agree));
+  std::vector<AlgorithmRecord> disagree = {answer(true, 0), answer(false, 0)};
+  CHECK(needs_exact_depth(deep, disagree));
+  // A step-limit stop fails by its termination: its disagreement does not pay for the depth.
+  std::vector<AlgorithmRecord> stopped = {answer(false, 0, Termination::step_limit)};
+  CHECK_FALSE(needs_exact_depth(deep, stopped));
+  deep.depth = 0.25;  // already computed
+  CHECK_FALSE(needs_exact_depth(deep, disagree));
+  exact::OracleAnswer apart;  // separated pairs need no depth
+  CHECK_FALSE(needs_exact_depth(apart, disagree));
+}

@@ -32,6 +32,13 @@ void judge(AlgorithmRecord& r, const Outcome& o, const ExactRecord& exact, doubl
 void add_witnesses(AlgorithmRecord& r, const Outcome& o, const exact::OracleAnswer* exact,
                    std::span<const Vec3> a, std::span<const Vec3> b);
 
+/// Whether the exact depth must be computed to judge the answers: the pair intersects, its
+/// depth was not asked for, and some answer says separated. That answer may be inside the
+/// touching band, which only the depth can tell. (A query stopped by its step limit fails by
+/// its termination anyway: its disagreement alone does not pay for the depth, the costliest
+/// exact computation, in step-limit sweeps.)
+bool needs_exact_depth(const exact::OracleAnswer& answer, std::span<const AlgorithmRecord> records);
+
 /// A case keeps its geometry when any answer is wrong, any query did not converge, or any
 /// distance error exceeds the band (relative to size).
 bool worth_keeping(const CaseResult& r, double relative_band);
