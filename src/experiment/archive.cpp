@@ -251,13 +251,15 @@ struct ArchiveWriter::Impl {
     fs::path fresh = snapshot_path(temp_path);
     fresh += ".new";
     std::error_code ec;
-    fs::copy_file(temp_path, fresh, fs::copy_options::overwrite_existing, ec);
+    fs::copy_file(file_path, fresh, fs::copy_options::overwrite_existing, ec);
     if (!ec) sync_file(fresh);
     if (!ec) fs::rename(fresh, snapshot_path(temp_path), ec);
     if (ec) cx.error("cannot write the checkpoint copy " + fresh.string() + ": " + ec.message());
     last_snapshot = Clock::now();
     last_copy = *last_snapshot - start;
   }
+  /// Where the open file is: "FILE.tmp.new" while it is created, then FILE.tmp.
+  fs::path file_path;
   std::optional<std::chrono::steady_clock::time_point> last_snapshot;
   std::chrono::steady_clock::duration last_copy{};
 };
@@ -271,7 +273,12 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
       cx.handle(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create file properties");
   // Closing the file fails (instead of silently staying open) if anything in it is still open.
   cx.check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_SEMI), "cannot set the file close degree");
-  file = cx.handle(H5Fcreate(temp_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
+  // Created under another name and given FILE.tmp only once its header is flushed and
+  // snapshotted: a run killed before then leaves no FILE.tmp to resume, rather than one that
+  // cannot be read.
+  file_path = temp_path;
+  file_path += ".new";
+  file = cx.handle(H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
                    "cannot create the file");
   root = cx.handle(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, "cannot open group /");
   const hid_t r = root.get();
@@ -569,9 +576,17 @@ ArchiveWriter::ArchiveWriter(const fs::path& final_path, const ArchiveHeader& he
   auto impl = std::make_unique<Impl>(final_path, temp, overwrite, header);
   try {
     impl->create(header);
+    impl->checkpoint();  // no rows yet: a run killed from now on resumes from this copy
+    fs::rename(impl->file_path, temp, ec);
+    if (ec)
+      impl->cx.error("cannot rename it from " + impl->file_path.string() + ": " + ec.message());
+    impl->file_path = temp;
   } catch (...) {
+    const fs::path created = impl->file_path;
     impl.reset();  // closes whatever was opened
+    fs::remove(created, ec);
     fs::remove(temp, ec);
+    fs::remove(snapshot_path(temp), ec);
     throw;
   }
   impl_ = std::move(impl);
