@@ -20,7 +20,8 @@ bool is_libccd_depth(std::string_view a) {
 
 /// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
 bool uses_distance_options(std::string_view a) {
-  return a == "gjk-johnson" || a == "gjk-johnson-backup" || a == "gjk-sv" || a == "gjk-voronoi";
+  return a == "gjk-johnson" || a == "gjk-johnson-backup" || a == "gjk-sv" || a == "gjk-voronoi" ||
+         a == "gjk-polyak";
 }
 
 std::vector<double> numbers(std::string_view key, std::string_view text) {
@@ -91,6 +92,8 @@ bool set_distance_option(GjkDistanceOptions& o, std::string_view key, std::strin
     o.relative_contact = non_negative(key, text);
   else if (key == "initial_direction")
     o.initial_direction = direction(key, text);
+  else if (key == "recenter")
+    o.recenter = boolean(text);
   else if (key == "start") {
     const auto start = distance_start_from_string(text);
     if (!start)
@@ -117,7 +120,8 @@ std::vector<std::pair<std::string, std::string>> describe_distance(const GjkDist
           {"duality_gap_tolerance", round_trip(d.duality_gap_tolerance)},
           {"relative_contact", round_trip(d.relative_contact)},
           {"start", std::string(to_string(d.start))},
-          {"initial_direction", text_of(d.initial_direction)}};
+          {"initial_direction", text_of(d.initial_direction)},
+          {"recenter", d.recenter ? "true" : "false"}};
 }
 
 }  // namespace
@@ -129,10 +133,16 @@ std::string round_trip(double x) {
 }
 
 std::vector<std::string_view> option_keys(std::string_view algorithm) {
-  static const std::vector<std::string_view> distance = {
-      "max_iterations",        "convergence",      "relative_gap", "absolute_gap_squared",
-      "duality_gap_tolerance", "relative_contact", "start",        "initial_direction"};
-  if (algorithm == "gjk-bool") return {"max_iterations", "start", "initial_direction"};
+  static const std::vector<std::string_view> distance = {"max_iterations",
+                                                         "convergence",
+                                                         "relative_gap",
+                                                         "absolute_gap_squared",
+                                                         "duality_gap_tolerance",
+                                                         "relative_contact",
+                                                         "start",
+                                                         "initial_direction",
+                                                         "recenter"};
+  if (algorithm == "gjk-bool") return {"max_iterations", "start", "initial_direction", "recenter"};
   if (uses_distance_options(algorithm)) return distance;
   if (algorithm == "gjk-nesterov") {
     auto keys = distance;
@@ -143,8 +153,8 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
   if (is_libccd_depth(algorithm))
     return {"max_iterations", "max_depth_iterations", "mpr_tolerance", "epa_tolerance"};
   if (algorithm == "epa")
-    return {"max_iterations", "max_faces",          "epa_relative_gap",
-            "relative_noise", "gjk_max_iterations", "gjk_start"};
+    return {"max_iterations",     "max_faces", "epa_relative_gap", "relative_noise",
+            "gjk_max_iterations", "gjk_start", "recenter"};
   if (algorithm == "sat") return {"early_exit"};
 #ifdef GJKLAB_HAVE_FCL
   if (algorithm == "fcl-libccd" || algorithm == "fcl-indep")
@@ -162,6 +172,8 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
   if (n == "gjk-bool") {
     if (key == "max_iterations") {
       o.gjk_boolean.max_iterations = iterations(key, text);
+    } else if (key == "recenter") {
+      o.gjk_boolean.recenter = boolean(text);
     } else if (key == "start") {
       const auto start = boolean_start_from_string(text);
       if (!start)
@@ -211,6 +223,8 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
       o.gjk_distance.max_iterations = iterations(key, text);
     else if (key == "gjk_start")
       set_distance_option(o.gjk_distance, "start", text);
+    else if (key == "recenter")
+      set_distance_option(o.gjk_distance, "recenter", text);
     else if (key == "epa_relative_gap")
       o.epa.relative_gap = non_negative(key, text);
     else
@@ -224,7 +238,8 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
   if (n == "gjk-bool")
     return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)},
             {"start", std::string(to_string(o.gjk_boolean.start))},
-            {"initial_direction", text_of(o.gjk_boolean.initial_direction)}};
+            {"initial_direction", text_of(o.gjk_boolean.initial_direction)},
+            {"recenter", o.gjk_boolean.recenter ? "true" : "false"}};
   if (uses_distance_options(n)) return describe_distance(o.gjk_distance);
   if (n == "gjk-nesterov") {
     auto described = describe_distance(o.gjk_nesterov);
@@ -246,7 +261,8 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
             {"epa_relative_gap", round_trip(o.epa.relative_gap)},
             {"relative_noise", round_trip(o.epa.relative_noise)},
             {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)},
-            {"gjk_start", std::string(to_string(o.gjk_distance.start))}};
+            {"gjk_start", std::string(to_string(o.gjk_distance.start))},
+            {"recenter", o.gjk_distance.recenter ? "true" : "false"}};
   if (n == "sat") return {{"early_exit", o.sat.early_exit ? "true" : "false"}};
 #ifdef GJKLAB_HAVE_FCL
   if (n == "fcl-libccd" || n == "fcl-indep")
@@ -275,6 +291,12 @@ AlgorithmSpec spec_from_description(const std::string& name,
   }
   if (name == "epa" && !described("gjk_start"))
     spec.options.gjk_distance.start = GjkDistanceStart::fixed_direction;
+  // Archives written before the exact re-centring ran the queries on the coordinates as given.
+  if (!described("recenter")) {
+    spec.options.gjk_boolean.recenter = false;
+    spec.options.gjk_distance.recenter = false;
+    spec.options.gjk_nesterov.recenter = false;
+  }
   for (const auto& [key, value] : text) {
     if (key == "algorithm") continue;  // the registry name, archived with the options
     try {

@@ -94,6 +94,14 @@ DistanceResult traced_nesterov_distance(const Polytope& a, const Polytope& b,
   return gjk_nesterov(a, b, o.gjk_nesterov, trace);
 }
 
+DistanceResult polyak_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+  return gjk_polyak(a, b, o.gjk_distance);
+}
+DistanceResult traced_polyak_distance(const Polytope& a, const Polytope& b,
+                                      const AlgorithmOptions& o, TraceRecorder& trace) {
+  return gjk_polyak(a, b, o.gjk_distance, trace);
+}
+
 using DistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&, const AlgorithmOptions&);
 using TracedDistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&,
                                                const AlgorithmOptions&, TraceRecorder&);
@@ -392,6 +400,9 @@ constexpr std::array kAlgorithms = {
                                            "GJK distance with Voronoi-region tests (Ericson 2005)"),
     gjk_distance_entry<nesterov_distance, traced_nesterov_distance>(
         "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes"),
+    gjk_distance_entry<polyak_distance, traced_polyak_distance>(
+        "gjk-polyak",
+        "Polyak-accelerated GJK distance (GJK++, Montaut et al. 2024), signed volumes"),
     AlgorithmInfo{"epa", AnswerKind::distance,
                   "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
                   run_epa, nullptr, false, true, swept_epa},
@@ -565,6 +576,12 @@ BenchTally bench_gjk_nesterov(std::span<const BenchPair> pairs, const AlgorithmO
   });
 }
 
+BenchTally bench_gjk_polyak(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return gjk_polyak(a, b, o.gjk_distance);
+  });
+}
+
 BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
   EpaWorkspace workspace;  // reused across the batch's queries, as run_epa's per thread
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
@@ -661,6 +678,7 @@ constexpr std::array kBenchLoops = {
     NamedBenchLoop{"gjk-sv", bench_gjk_distance<SignedVolumesSubAlgorithm>},
     NamedBenchLoop{"gjk-voronoi", bench_gjk_distance<VoronoiSubAlgorithm>},
     NamedBenchLoop{"gjk-nesterov", bench_gjk_nesterov},
+    NamedBenchLoop{"gjk-polyak", bench_gjk_polyak},
     NamedBenchLoop{"epa", bench_epa},
     NamedBenchLoop{"sat", bench_sat},
     NamedBenchLoop{"libccd-gjk", bench_libccd_gjk},

@@ -204,6 +204,11 @@ Polytope::Polytope(std::vector<Vec3> vertices)
   if (std::string problem = describe_invalid_cloud(vertices_); !problem.empty())
     throw InvalidGeometry(problem);
   mean_ = mean_of(vertices_);
+  box_lower_ = box_upper_ = vertices_[0];
+  for (const Vec3& v : vertices_) {
+    box_lower_ = box_lower_.cwiseMin(v);
+    box_upper_ = box_upper_.cwiseMax(v);
+  }
   build_blocks();
 }
 
@@ -211,6 +216,8 @@ Polytope::Polytope(const Polytope& other)
     : vertices_(other.vertices_),
       blocks_(other.blocks_),
       mean_(other.mean_),
+      box_lower_(other.box_lower_),
+      box_upper_(other.box_upper_),
       id_(other.id_),
       graph_(other.graph_),
       start_table_(other.start_table_),
@@ -222,6 +229,8 @@ Polytope& Polytope::operator=(const Polytope& other) {
     vertices_ = other.vertices_;
     blocks_ = other.blocks_;
     mean_ = other.mean_;
+    box_lower_ = other.box_lower_;
+    box_upper_ = other.box_upper_;
     id_ = other.id_;
     graph_ = other.graph_;
     start_table_ = other.start_table_;
@@ -235,6 +244,8 @@ Polytope::Polytope(Polytope&& other) noexcept
     : vertices_(std::move(other.vertices_)),
       blocks_(std::move(other.blocks_)),
       mean_(other.mean_),
+      box_lower_(other.box_lower_),
+      box_upper_(other.box_upper_),
       id_(other.id_),
       graph_(std::move(other.graph_)),
       start_table_(std::move(other.start_table_)),
@@ -245,6 +256,8 @@ Polytope& Polytope::operator=(Polytope&& other) noexcept {
   vertices_ = std::move(other.vertices_);
   blocks_ = std::move(other.blocks_);
   mean_ = other.mean_;
+  box_lower_ = other.box_lower_;
+  box_upper_ = other.box_upper_;
   id_ = other.id_;
   graph_ = std::move(other.graph_);
   start_table_ = std::move(other.start_table_);
@@ -416,6 +429,17 @@ Polytope Polytope::transformed(const Pose& pose) const {
   moved.reserve(vertices_.size());
   for (const Vec3& v : vertices_)
     moved.push_back(pose.apply(v));
+  Polytope out(std::move(moved));
+  out.graph_ = graph_;
+  if (graph_) out.build_start_table();
+  return out;
+}
+
+Polytope Polytope::translated(const Vec3& t) const {
+  std::vector<Vec3> moved;
+  moved.reserve(vertices_.size());
+  for (const Vec3& v : vertices_)
+    moved.push_back(v + t);
   Polytope out(std::move(moved));
   out.graph_ = graph_;
   if (graph_) out.build_start_table();

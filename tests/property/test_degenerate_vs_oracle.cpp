@@ -44,6 +44,8 @@ name = "gjk-voronoi"
 [[algorithm]]
 name = "gjk-nesterov"
 [[algorithm]]
+name = "gjk-polyak"
+[[algorithm]]
 name = "epa"
 [[algorithm]]
 name = "gjk-certified"

@@ -116,7 +116,7 @@ TEST_CASE("sphere-swept shapes agree with the exact oracle on 1000 seeded random
   CHECK(separated > kPairs / 4);
   CHECK(cores_intersecting > 10);
   CHECK(intersecting - cores_intersecting > 10);
-  CHECK(tallies.size() == 12);
+  CHECK(tallies.size() == 13);
   for (const auto& [name, t] : tallies)
     WARN(name << ": wrong booleans outside the band " << t.wrong_outside_band << "/" << kPairs
               << ", not converged " << t.not_converged << ", worst distance error / size "

@@ -1,6 +1,6 @@
 // The GJK distance variants (gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi,
-// gjk-nesterov) against the exact oracle, scale invariance, the convergence criteria, the
-// Nesterov restart rule, and warm starts from the previous query's simplex.
+// gjk-nesterov, gjk-polyak) against the exact oracle, scale invariance, the convergence criteria,
+// the Nesterov restart rule, and warm starts from the previous query's simplex.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -48,6 +48,8 @@ std::vector<Variant> variants() {
          static_cast<GjkDistanceOptions&>(n) = o;
          return gjk_nesterov(a, b, n);
        }},
+      {"gjk-polyak", [](const Polytope& a, const Polytope& b,
+                        const GjkDistanceOptions& o) { return gjk_polyak(a, b, o); }},
   };
 }
 
@@ -116,7 +118,7 @@ TEST_CASE("distance variants: 2^k scaling gives exactly 2^k distances", "[unit][
       }
     }
   }
-  CHECK(compared == 5 * 60 * 4);
+  CHECK(compared == 6 * 60 * 4);
 }
 
 TEST_CASE("convergence criteria: each stops within its documented bound",
@@ -284,4 +286,44 @@ TEST_CASE("separation certificate: squared and unsquared bounds agree at every s
     CHECK_FALSE(detail::separation_certified(0.0, vv, ww));
     CHECK_FALSE(detail::separation_certified(-bound, vv, ww));
   }
+}
+
+TEST_CASE("momentum directions: Polyak's average and Nesterov's mix, step by step",
+          "[unit][nesterov]") {
+  // Polyak: d_k = d_{k−1}/(k+1) + k/(k+1)·v_k.
+  PolyakDirections polyak;
+  polyak.start(Vec3(4, 0, 0), Vec3(9, 9, 9));
+  CHECK(polyak.direction(1, Vec3(0, 2, 0)).isApprox(Vec3(2, 1, 0)));
+  CHECK(polyak.direction(2, Vec3(0, 0, 3)).isApprox(Vec3(2.0 / 3, 1.0 / 3, 2)));
+  // Nesterov: δ_1 = 1/2, y_1 = (v_1 + s_0)/2, d_1 = (d_0 + y_1)/2.
+  NesterovDirections nesterov;
+  nesterov.start(Vec3(4, 0, 0), Vec3(0, 0, 2));
+  CHECK(nesterov.direction(1, Vec3(0, 2, 0)).isApprox(Vec3(2, 0.5, 0.5)));
+  // Plain GJK takes v itself.
+  CHECK(PlainDirections{}.direction(7, Vec3(1, 2, 3)) == Vec3(1, 2, 3));
+}
+
+TEST_CASE("momentum starts from the direction of the first support point", "[unit][nesterov]") {
+  // The centre start takes its first support point in −c (c = c_A − c_B), so d_0 ∥ c; a fixed
+  // start in −c is the same query step for step. (The momentum was once seeded from
+  // initial_direction whatever the start, so the two differed.)
+  Rng rng(77);
+  int compared = 0;
+  for (int i = 0; i < 60; ++i) {
+    const auto pair = sample_pair(rng, i, 64);
+    const Polytope a(pair.a), b(pair.b);
+    const Vec3 c = a.vertex_mean() - b.vertex_mean();
+    GjkNesterovOptions fixed;
+    fixed.start = GjkDistanceStart::fixed_direction;
+    fixed.initial_direction = -c;
+    const DistanceResult centre = gjk_nesterov(a, b);
+    const DistanceResult same = gjk_nesterov(a, b, fixed);
+    INFO("pair " << i);
+    CHECK(same.distance == centre.distance);
+    CHECK(same.iterations == centre.iterations);
+    GjkDistanceOptions fixed_plain = fixed;
+    CHECK(gjk_polyak(a, b, fixed_plain).distance == gjk_polyak(a, b).distance);
+    ++compared;
+  }
+  CHECK(compared == 60);
 }

@@ -83,8 +83,15 @@ class Polytope {
   /// The same cloud with every coordinate multiplied by factor (adjacency kept, as above).
   Polytope scaled(double factor) const;
 
+  /// The same cloud with every vertex moved by t (adjacency kept). Exact where every sum
+  /// x + t_i is representable, as for the exact re-centring (recentring.hpp).
+  Polytope translated(const Vec3& t) const;
+
   /// Length of the diagonal of the axis-aligned bounding box (length units).
   double bounding_box_diagonal() const;
+  /// Corners of the axis-aligned bounding box; computed once, at construction.
+  const Vec3& box_lower() const { return box_lower_; }
+  const Vec3& box_upper() const { return box_upper_; }
   /// Mean of the vertices (not the volume centroid); computed once, at construction.
   Vec3 vertex_mean() const { return mean_; }
   /// Identity of the vertex list, for caches of data derived from it (hull features, a peer
@@ -120,6 +127,8 @@ class Polytope {
   std::vector<Vec3> vertices_;
   std::vector<Block> blocks_;
   Vec3 mean_ = Vec3::Zero();
+  Vec3 box_lower_ = Vec3::Zero();
+  Vec3 box_upper_ = Vec3::Zero();
   std::uint64_t id_ = 0;
   std::shared_ptr<const HullGraph> graph_;
   /// Start vertices of hill climbing: for each cell of a cube map of directions (6 faces of

@@ -607,6 +607,17 @@ template <SupportMap A, SupportMap B>
 EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
                   const EpaOptions& options, EpaWorkspace& ws) {
   detail::validate(options);
+  // Re-centred once for both phases (gjk_options.recenter, see recentred.hpp): EPA's support
+  // values are compared at the scale of the pair too.
+  if constexpr (std::same_as<A, Polytope> && std::same_as<B, Polytope>) {
+    if (const std::optional<Vec3> t = detail::recentring_of(a, b, gjk_options.recenter)) {
+      const Polytope moved_a = a.translated(-*t), moved_b = b.translated(-*t);
+      EpaResult out =
+          epa_from_gjk(moved_a, moved_b, gjk_distance(moved_a, moved_b, gjk_options), options, ws);
+      detail::translate_answer(out, *t);
+      return out;
+    }
+  }
   return epa_from_gjk(a, b, gjk_distance(a, b, gjk_options), options, ws);
 }
 

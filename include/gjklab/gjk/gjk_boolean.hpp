@@ -21,6 +21,7 @@
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/recentred.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/trace.hpp"
 
@@ -77,9 +78,12 @@ bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
 
 }  // namespace detail
 
-template <SupportMap A, SupportMap B, class Observer = NoTrace>
-BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& options = {},
-                            Observer&& observer = {}) {
+namespace detail {
+
+/// The boolean walk on the shapes as given (gjk_intersect below re-centres first).
+template <SupportMap A, SupportMap B, class Observer>
+BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOptions& options,
+                                     Observer& observer) {
   BooleanResult out;
   detail::BooleanSimplex simplex;
   Vec3 direction;
@@ -88,7 +92,7 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
       options.start != GjkBooleanStart::fixed_direction && detail::centre_difference(a, b, centre);
 
   auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
-    if constexpr (std::remove_reference_t<Observer>::enabled) {
+    if constexpr (Observer::enabled) {
       GjkIterationTrace t;
       t.iteration = out.iterations;
       t.direction = d;
@@ -183,6 +187,27 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
   // No separating plane was found within the budget; the answer is undetermined and reported
   // as "not intersecting" only together with step_limit.
   return finish(false, Termination::step_limit);
+}
+
+}  // namespace detail
+
+/// Boolean GJK: do the hulls of A and B intersect? On the exactly re-centred pair when
+/// options.recenter applies to two polytopes (or swept polytopes) far from the origin
+/// (recentred.hpp), else on the shapes as given.
+template <SupportMap A, SupportMap B, class Observer = NoTrace>
+BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& options = {},
+                            Observer&& observer = {}) {
+  using Traced = std::remove_reference_t<Observer>;
+  if constexpr (detail::Recentrable<A> && detail::Recentrable<B>) {
+    if (const std::optional<Vec3> t = detail::recentring_of(a, b, options.recenter)) {
+      const Polytope core_a = detail::core_of(a).translated(-*t);
+      const Polytope core_b = detail::core_of(b).translated(-*t);
+      detail::TranslatedTrace<Traced> moved_trace{observer, *t, false};
+      return detail::gjk_intersect_as_given(detail::with_core(a, core_a),
+                                            detail::with_core(b, core_b), options, moved_trace);
+    }
+  }
+  return detail::gjk_intersect_as_given(a, b, options, observer);
 }
 
 }  // namespace gjklab

@@ -11,10 +11,13 @@
 #include <concepts>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/directions.hpp"
 #include "gjklab/gjk/johnson.hpp"
 #include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/recentred.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
 #include "gjklab/gjk/trace.hpp"
@@ -274,6 +277,29 @@ inline bool separation_certified(double vw, double vv, double ww) {
   return vw > kDotRoundoff * std::sqrt(vv) * std::sqrt(ww);
 }
 
+/// Consecutive stalled steps (GjkStep::stalled) a distance loop takes before it stops with
+/// no_progress: each costs one support call, and a stall that lasts longer is rounding noise.
+inline constexpr int kMaxStalledSteps = 4;
+
+/// True if the gap ‖v‖² − v·w = vv − vw is positive beyond the rounding of both products
+/// (each within kDotRoundoff of ‖v‖‖w‖ resp. ‖v‖², for ‖w‖² = ww): exact GJK would then
+/// decrease ‖v‖ strictly by adding w, even where the decrease is below double resolution.
+inline bool gap_certified(double vv, double vw, double ww) {
+  return vv - vw > 2 * kDotRoundoff * (vv + std::sqrt(vv * ww));
+}
+
+/// Whether a step that did not decrease ‖v‖ in floating point may still be taken (a stalled
+/// step): the gap is certified, the new point stays in the simplex (so the simplex changes and
+/// v turns), the new ‖v‖² = new_vv is not above vv by more than rounding (relative 1e-12), and
+/// fewer than kMaxStalledSteps stalls came in a row. Near-parallel edges need these steps: the
+/// exact decrease there is a relative 1e-17 per step, while the simplex still moves towards
+/// the feature that decides the answer.
+inline bool may_stall(double vv, double vw, double ww, double new_vv, bool keeps_new_point,
+                      int stalls) {
+  return stalls < kMaxStalledSteps && keeps_new_point && new_vv <= vv * (1 + 1e-12) &&
+         gap_certified(vv, vw, ww);
+}
+
 /// Raises the lower bound of the distance to v·w/‖v‖ (for v·w > 0, ‖v‖² = vv).
 inline void lower_bound_update(double& lower_bound, double vw, double vv) {
   lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
@@ -304,8 +330,11 @@ bool centre_difference(const A& a, const B& b, Vec3& out) {
 /// moved); points without indices are taken as given and must be points of the current A and
 /// B. Repeated and non-finite points are skipped, and the rest is reduced by the sub-algorithm;
 /// when nothing usable remains or the reduction fails, the query starts cold.
+///
+/// Returns d_0, the direction the start minimised over A − B (the negated direction of the
+/// first support call), or the start's closest point after a warm start (see directions.hpp).
 template <SubAlgorithm Sub, SupportMap A, SupportMap B>
-void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
+Vec3 start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
                    std::span<const SimplexVertex> warm, Simplex& simplex, ClosestOnSimplex& best,
                    int& support_calls) {
   simplex.clear();
@@ -327,125 +356,209 @@ void start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
     Simplex reduced = simplex;
     if (sub.reduce(reduced, best) && is_finite(best.v)) {
       simplex = reduced;
-      return;
+      return best.v;
     }
   }
   Vec3 centre;
   const bool from_centre =
       options.start == GjkDistanceStart::centre_direction && centre_difference(a, b, centre);
-  const SimplexVertex first =
-      minkowski_support(a, b, from_centre ? Vec3(-centre) : options.initial_direction);
+  const Vec3 search = from_centre ? Vec3(-centre) : options.initial_direction;
+  const SimplexVertex first = minkowski_support(a, b, search);
   support_calls = 1;
   simplex.clear();
   simplex.push(first);
   best = {first.w, first.a, first.b, {1, 0, 0, 0}};
+  return -search;
 }
 
-/// The GJK distance loop shared by the cold and warm-started queries; q.out.simplex and q.best
-/// hold the answer when it returns.
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
+/// The outcome of one solved step: the simplex plus w, solved by the sub-algorithm.
+enum class StepOutcome : std::uint8_t { progressed, stalled, no_progress, stop };
+
+/// The GJK distance loop of every variant: the search direction comes from `directions` (see
+/// directions.hpp), everything else is shared: the cold or warm start, the stopping tests, the
+/// separation certificate, the sub-algorithm's step, stalls and the momentum restart.
+/// q.out.simplex and q.best hold the answer when it returns.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions>
 DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVertex> warm,
-                               DistanceQueryState<Observer>& q) {
+                               DistanceQueryState<Observer>& q, Directions& directions) {
   const Sub sub{};
   const GjkDistanceOptions& options = q.options;
   DistanceResult& out = q.out;
   Simplex& simplex = q.simplex();
   ClosestOnSimplex& best = q.best;
-  start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
-  auto trace = [&](const Vec3& d, const SimplexVertex& w, double vv, double vw, GjkStep step) {
-    q.trace(d, w, vv, vw, step);
-  };
+  const Vec3 d0 = start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
 
   if (!is_finite(simplex[0].w)) return {Termination::numerical_failure, false};
   // A warm start may begin with a tetrahedron that encloses the origin.
   if (simplex.full() || q.in_contact(best.v, simplex)) return {Termination::converged, true};
 
-  // Set once some support point satisfies v·w > 0: then the plane v·x = v·w separates the
-  // origin from A − B, a certificate that the shapes do not intersect. A sub-algorithm that
-  // later claims contact has accepted a numerically flat simplex.
+  // Set once some support point s satisfies d·s > 0 beyond rounding: then the plane d·x = d·s
+  // separates the origin from A − B, a certificate that the shapes do not intersect. A
+  // sub-algorithm that later claims contact has accepted a numerically flat simplex.
   bool separation_proven = false;
+  // Steps in a row whose decrease of ‖v‖ rounding hid (see may_stall).
+  int stalls = 0;
+  bool accelerated = Directions::momentum;
+  if constexpr (Directions::momentum) {
+    const double n0 = d0.norm();
+    directions.start(n0 > 0 ? Vec3(d0 / n0 * simplex[0].w.norm()) : best.v, simplex[0].w);
+  }
 
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     const Vec3 v = best.v;
     const double vv = v.squaredNorm();
-    const SimplexVertex next = detail::minkowski_support(a, b, -v);
+    Vec3 d = v;
+    if constexpr (Directions::momentum) {
+      if (accelerated) {
+        d = directions.direction(out.iterations, v);
+        // A vanishing or non-finite momentum direction carries no information: go plain.
+        if (!is_finite(d) || is_zero(d)) {
+          accelerated = false;
+          d = v;
+        }
+      }
+    }
+    auto trace = [&](const SimplexVertex& w, double vw, GjkStep step) {
+      q.trace(-d, w, vv, vw, step);
+    };
+    const SimplexVertex next = detail::minkowski_support(a, b, -d);
     ++out.support_calls;
     if (!is_finite(next.w)) {
-      trace(-v, next, vv, NAN, GjkStep::non_finite);
+      trace(next, NAN, GjkStep::non_finite);
       return {Termination::numerical_failure, false};
     }
+    directions.observe(next.w);
     const double vw = v.dot(next.w);
-    if (vw > 0) lower_bound_update(q.lower_bound, vw, vv);
+    const double ww = next.w.squaredNorm();
+    if (accelerated) {
+      // The plane d·x = d·s supports A − B: d·s/‖d‖ is a lower bound of the distance.
+      const double dw = d.dot(next.w), dd = d.squaredNorm();
+      if (dw > 0) lower_bound_update(q.lower_bound, dw, dd);
+      if (!separation_proven && separation_certified(dw, dd, ww)) separation_proven = true;
+    } else if (vw > 0) {
+      lower_bound_update(q.lower_bound, vw, vv);
+    }
 
-    if (gap_converged(options, vv, vw)) {
-      trace(-v, next, vv, vw, GjkStep::gap_converged);
-      return {Termination::converged, false};
-    }
-    // w already in the simplex: in exact arithmetic its gap would be 0 (every retained point
+    // The duality gap at s: the stopping test when plain, the restart test when accelerated.
+    const bool gap_met = gap_converged(options, vv, vw);
+    // s already in the simplex: in exact arithmetic its gap would be 0 (every retained point
     // lies on the plane v·x = ‖v‖²), so the new point brings no information.
-    if (simplex.contains(next.w)) {
-      trace(-v, next, vv, vw, GjkStep::repeated_support);
+    const bool repeated = !gap_met && simplex.contains(next.w);
+    if (accelerated && (gap_met || repeated)) {
+      accelerated = false;
+      trace(next, vw, GjkStep::momentum_restart);
+      continue;
+    }
+    if (gap_met) {
+      trace(next, vw, GjkStep::gap_converged);
       return {Termination::converged, false};
     }
-    if (!separation_proven && separation_certified(vw, vv, next.w.squaredNorm()))
+    if (repeated) {
+      trace(next, vw, GjkStep::repeated_support);
+      return {Termination::converged, false};
+    }
+    if (!accelerated && !separation_proven && separation_certified(vw, vv, ww))
       separation_proven = true;
 
-    // Solve the simplex plus w first and change the simplex only once the answer is accepted.
+    // Solve the simplex plus s first and change the simplex only once the answer is accepted.
     std::array<Vec3, 4> y = simplex.points();
     y[simplex.size()] = next.w;
     const auto s = sub.solve(y, simplex.size() + 1);
     if (!s.found) {
-      trace(-v, next, vv, vw, GjkStep::degenerate);
+      trace(next, vw, GjkStep::degenerate);
       return {Termination::degenerate_simplex, false};
     }
     if (!is_finite(s.closest)) {
-      trace(-v, next, vv, vw, GjkStep::non_finite);
+      trace(next, vw, GjkStep::non_finite);
       return {Termination::numerical_failure, false};
     }
     const bool full = s.subset == 0xF;
     if (!separation_proven && (full || q.in_contact(s.closest, max_norm_squared(y, s.subset)))) {
       apply_solution(s, next, simplex, best);
-      trace(-v, next, vv, vw, GjkStep::contact);
+      trace(next, vw, GjkStep::contact);
       return {Termination::converged, true};
     }
+    // The candidate simplex and its closest point: the solution, or after a separation
+    // certificate a full simplex's nearest face (contact would contradict the certificate).
+    Simplex candidate_simplex = simplex;
+    ClosestOnSimplex candidate;
+    bool keeps_next = false;
     if (full) {
-      // Contact contradicts the separation certificate: continue from the nearest face.
-      Simplex reduced = simplex;
-      reduced.push(next);
-      ClosestOnSimplex candidate;
-      if (!detail::reduce_to_closest_face(sub, reduced, candidate)) {
-        trace(-v, next, vv, vw, GjkStep::degenerate);
+      candidate_simplex.push(next);
+      if (!detail::reduce_to_closest_face(sub, candidate_simplex, candidate)) {
+        trace(next, vw, GjkStep::degenerate);
         return {Termination::degenerate_simplex, false};
       }
-      if (!(candidate.v.squaredNorm() < vv)) {
-        trace(-v, next, vv, vw, GjkStep::no_progress);
-        return {Termination::no_progress, false};
-      }
-      simplex = reduced;
+      keeps_next = candidate_simplex.contains(next.w);
+    } else {
+      keeps_next = (s.subset >> simplex.size()) & 1u;
+    }
+    // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
+    // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
+    // an accelerated query drops its momentum instead.
+    const double new_vv = full ? candidate.v.squaredNorm() : s.closest.squaredNorm();
+    const bool progressed = new_vv < vv;
+    if (!progressed && accelerated) {
+      accelerated = false;
+      trace(next, vw, GjkStep::momentum_restart);
+      continue;
+    }
+    if (!progressed && !may_stall(vv, vw, ww, new_vv, keeps_next, stalls)) {
+      trace(next, vw, GjkStep::no_progress);
+      return {Termination::no_progress, false};
+    }
+    if (full) {
+      simplex = candidate_simplex;
       best = candidate;
     } else {
-      // The upper bound ‖v‖ must decrease strictly; when rounding stops it, keep the old v.
-      if (!(s.closest.squaredNorm() < vv)) {
-        trace(-v, next, vv, vw, GjkStep::no_progress);
-        return {Termination::no_progress, false};
-      }
       apply_solution(s, next, simplex, best);
     }
-    trace(-v, next, vv, vw,
-          out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);
+    stalls = progressed ? 0 : stalls + 1;
+    trace(next, vw,
+          out.iterations == options.max_iterations ? GjkStep::step_limit
+          : progressed                             ? GjkStep::continued
+                                                   : GjkStep::stalled);
   }
   out.iterations = options.max_iterations;
   return {Termination::step_limit, false};
 }
 
-/// Runs the loop and builds the result in the returned object itself.
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer>
-DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
-                                std::span<const SimplexVertex> warm, Observer&& observer) {
+/// Runs the loop on the shapes as given and builds the result in the returned object itself.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions>
+DistanceResult gjk_distance_run_as_given(const A& a, const B& b, const GjkDistanceOptions& options,
+                                         std::span<const SimplexVertex> warm, Observer& observer,
+                                         Directions directions) {
   DistanceResult out;
-  DistanceQueryState<std::remove_reference_t<Observer>> q{options, observer, out};
-  q.finish(gjk_distance_loop<Sub>(a, b, warm, q));
+  DistanceQueryState<Observer> q{options, observer, out};
+  q.finish(gjk_distance_loop<Sub>(a, b, warm, q, directions));
   return out;
+}
+
+/// Runs the query: on the exactly re-centred pair when options.recenter applies to two
+/// polytopes far from the origin (recentred.hpp), else on the shapes as given.
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer,
+          class Directions = PlainDirections>
+DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
+                                std::span<const SimplexVertex> warm, Observer&& observer,
+                                Directions directions = {}) {
+  using Traced = std::remove_reference_t<Observer>;
+  if constexpr (std::same_as<A, Polytope> && std::same_as<B, Polytope>) {
+    if (const std::optional<Vec3> t = recentring_of(a, b, options.recenter)) {
+      const Polytope moved_a = a.translated(-*t), moved_b = b.translated(-*t);
+      // Warm-start points are re-read from their indices; points without indices move too.
+      std::vector<SimplexVertex> start(warm.begin(), warm.end());
+      for (SimplexVertex& v : start) {
+        v.a -= *t;
+        v.b -= *t;
+      }
+      TranslatedTrace<Traced> moved_trace{observer, *t};
+      DistanceResult out =
+          gjk_distance_run_as_given<Sub>(moved_a, moved_b, options, start, moved_trace, directions);
+      translate_answer(out, *t);
+      return out;
+    }
+  }
+  return gjk_distance_run_as_given<Sub>(a, b, options, warm, observer, directions);
 }
 
 }  // namespace detail

@@ -57,6 +57,7 @@ inline std::optional<GjkBooleanStart> boolean_start_from_string(std::string_view
 struct GjkBooleanDefaults {
   static constexpr int max_iterations = 64;
   static constexpr GjkBooleanStart start = GjkBooleanStart::centre_point;
+  static constexpr bool recenter = true;
 };
 
 /// Options of `gjk-bool`, the simplex-walking boolean GJK.
@@ -70,6 +71,10 @@ struct GjkBooleanOptions {
   /// First search direction (any length) of fixed_direction, and of the centre starts when
   /// they fall back to it; fixed so that runs are reproducible.
   Vec3 initial_direction = Vec3(1, 0, 0);
+  /// Translate a pair of polytopes far from the origin exactly towards it before the query
+  /// (geometry/recentring.hpp), so that support values are compared at the scale of the pair;
+  /// false reproduces the naive query on the coordinates as given.
+  bool recenter = GjkBooleanDefaults::recenter;
 };
 
 /// The stopping test of the distance queries, evaluated on the gap ‖v‖² − v·w between the
@@ -147,6 +152,7 @@ struct GjkDistanceDefaults {
   static constexpr double absolute_gap_squared = 0.0;
   static constexpr double duality_gap_tolerance = 0.0;
   static constexpr double relative_contact = 1e-13;
+  static constexpr bool recenter = true;
 };
 
 /// Options of the GJK distance queries: `gjk-johnson`, `gjk-johnson-backup`, `gjk-sv`,
@@ -179,6 +185,11 @@ struct GjkDistanceOptions {
   Vec3 initial_direction = Vec3(1, 0, 0);
   /// How a cold start picks its first support point (see GjkDistanceStart).
   GjkDistanceStart start = GjkDistanceDefaults::start;
+  /// Translate a pair of polytopes far from the origin exactly towards it before the query
+  /// (geometry/recentring.hpp), so that support values are compared at the scale of the pair;
+  /// false reproduces the naive query on the coordinates as given. Answers are reported in the
+  /// original frame.
+  bool recenter = GjkDistanceDefaults::recenter;
 };
 
 struct GjkNesterovDefaults {

@@ -26,6 +26,9 @@ enum class GjkStep : std::uint8_t {
   non_finite,        ///< a NaN or infinity appeared
   step_limit,        ///< the iteration bound was reached
   momentum_restart,  ///< (Nesterov GJK) the momentum step failed; plain GJK directions from now on
+  /// ‖v‖ did not decrease in floating point, but w passed v·w < ‖v‖² by more than the rounding
+  /// of v·w, so exact GJK would have progressed: the simplex with w is kept (bounded count)
+  stalled,
 };
 
 constexpr std::string_view to_string(GjkStep s) {
@@ -50,6 +53,8 @@ constexpr std::string_view to_string(GjkStep s) {
       return "step_limit";
     case GjkStep::momentum_restart:
       return "momentum_restart";
+    case GjkStep::stalled:
+      return "stalled";
   }
   return "unknown";
 }
