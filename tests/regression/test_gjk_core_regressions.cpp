@@ -103,3 +103,46 @@ TEST_CASE("boxes 1e8 from the origin, 0.18 apart: exact re-centring", "[regressi
     CHECK(v.b == c.b[v.index_b]);
   }
 }
+
+TEST_CASE("rotated boxes face to face, 4.1e-11 apart: a flat tetrahedron is not contact",
+          "[regression]") {
+  // Kissing boxes of side 0.25 with one random rotation (the configuration of FCL issues 493
+  // and 495; hard configurations study, case 2131). The fourth support point lies on the
+  // plane of the touching faces' Minkowski face, so the tetrahedron is flat within rounding,
+  // while the origin is 4.1e-11 off that plane; Johnson's rounded weights were all positive
+  // and gjk-johnson claimed contact (error 5.8e-11 × size). The driver now checks that the
+  // origin is not provably outside the tetrahedron before it accepts contact.
+  const auto c = load_case("kissing_boxes_rotated_4p1e-11_apart.jsonl");
+  const auto exact = exact::solve(c.a, c.b);
+  REQUIRE_FALSE(exact.intersect);
+  REQUIRE(exact.distance > 4e-11);
+  const Polytope a(c.a), b(c.b);
+  const double size = pair_size(c.a, c.b);
+  for (const char* name : kDistanceVariants) {
+    INFO(name);
+    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    CHECK_FALSE(o.intersect);
+    REQUIRE(o.distance.has_value());
+    CHECK(std::abs(*o.distance - exact.distance) <= 1e-12 * size);
+  }
+}
+
+TEST_CASE("origin_outside_tetrahedron: certain only beyond rounding", "[regression]") {
+  using detail::origin_outside_tetrahedron;
+  // A proper tetrahedron around the origin, and the same one moved off it.
+  const std::array<Vec3, 4> around = {Vec3(1, 1, 1), Vec3(-1, -1, 1), Vec3(-1, 1, -1),
+                                      Vec3(1, -1, -1)};
+  CHECK_FALSE(origin_outside_tetrahedron(around));
+  std::array<Vec3, 4> off = around;
+  for (Vec3& p : off)
+    p += Vec3(0, 0, 3);
+  CHECK(origin_outside_tetrahedron(off));
+  // A flat tetrahedron (z = 1e-9 for all points): the origin is 1e-9 off its plane.
+  const std::array<Vec3, 4> flat = {Vec3(1, 0, 1e-9), Vec3(-1, 1, 1e-9), Vec3(-1, -1, 1e-9),
+                                    Vec3(0.2, 0.3, 1e-9)};
+  CHECK(origin_outside_tetrahedron(flat));
+  // The origin on a face: not certainly outside.
+  const std::array<Vec3, 4> on_face = {Vec3(1, 0, 0), Vec3(-1, 1, 0), Vec3(-1, -1, 0),
+                                       Vec3(0, 0, 1)};
+  CHECK_FALSE(origin_outside_tetrahedron(on_face));
+}

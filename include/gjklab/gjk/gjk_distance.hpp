@@ -277,6 +277,34 @@ inline bool separation_certified(double vw, double vv, double ww) {
   return vw > kDotRoundoff * std::sqrt(vv) * std::sqrt(ww);
 }
 
+/// True if the origin is certainly outside the tetrahedron y[0..3]: for some face, on the
+/// other side of the face's plane from the opposite vertex, or farther from that plane than the
+/// opposite vertex, by more than the rounding of the signed distances. (Inside, the origin
+/// lies between every face plane and its opposite vertex.) The bound covers the rounding of
+/// the face normal n = e1 × e2 (componentwise within 3u‖e1‖‖e2‖) and of the dot products with
+/// points of norm ≤ 2M, M = max‖y_i‖, with a factor 2 to spare; faces with n = 0 decide nothing.
+inline bool origin_outside_tetrahedron(const std::array<Vec3, 4>& y) {
+  double m = 0;
+  for (const Vec3& p : y)
+    m = std::max(m, p.norm());
+  for (int k = 0; k < 4; ++k) {
+    const Vec3& y0 = y[(k + 1) % 4];
+    const Vec3 e1 = y[(k + 2) % 4] - y0, e2 = y[(k + 3) % 4] - y0;
+    const Vec3 n = e1.cross(e2);
+    const double n_norm = n.norm();
+    if (!(n_norm > 0)) continue;
+    const double bound = 16 * kDotRoundoff * m * (n_norm + e1.norm() * e2.norm());
+    double s_origin = -n.dot(y0);        // the origin's signed distance, times ‖n‖
+    double s_vertex = n.dot(y[k] - y0);  // the opposite vertex's, times ‖n‖
+    if (s_vertex < 0) {
+      s_origin = -s_origin;
+      s_vertex = -s_vertex;
+    }
+    if (s_origin < -bound || s_origin > s_vertex + bound) return true;
+  }
+  return false;
+}
+
 /// Consecutive stalled steps (GjkStep::stalled) a distance loop takes before it stops with
 /// no_progress: each costs one support call, and a stall that lasts longer is rounding noise.
 inline constexpr int kMaxStalledSteps = 4;
@@ -473,7 +501,13 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       return {Termination::numerical_failure, false};
     }
     const bool full = s.subset == 0xF;
-    if (!separation_proven && (full || q.in_contact(s.closest, max_norm_squared(y, s.subset)))) {
+    // A full simplex is contact unless its tetrahedron provably misses the origin: flat within
+    // rounding, with the origin off its plane (kissing faces), where the sub-algorithm's
+    // weights are rounding noise. Then the query goes on from the nearest face, as after a
+    // separation certificate.
+    const bool contact = full ? !origin_outside_tetrahedron(y)
+                              : q.in_contact(s.closest, max_norm_squared(y, s.subset));
+    if (!separation_proven && contact) {
       apply_solution(s, next, simplex, best);
       trace(next, vw, GjkStep::contact);
       return {Termination::converged, true};
