@@ -209,6 +209,8 @@ Polytope::Polytope(std::vector<Vec3> vertices)
     box_lower_ = box_lower_.cwiseMin(v);
     box_upper_ = box_upper_.cwiseMax(v);
   }
+  box_extent_ = (box_upper_ - box_lower_).maxCoeff();
+  max_magnitude_ = std::max(box_lower_.cwiseAbs().maxCoeff(), box_upper_.cwiseAbs().maxCoeff());
   build_blocks();
 }
 
@@ -218,6 +220,8 @@ Polytope::Polytope(const Polytope& other)
       mean_(other.mean_),
       box_lower_(other.box_lower_),
       box_upper_(other.box_upper_),
+      box_extent_(other.box_extent_),
+      max_magnitude_(other.max_magnitude_),
       id_(other.id_),
       graph_(other.graph_),
       start_table_(other.start_table_),
@@ -231,6 +235,10 @@ Polytope& Polytope::operator=(const Polytope& other) {
     mean_ = other.mean_;
     box_lower_ = other.box_lower_;
     box_upper_ = other.box_upper_;
+  box_extent_ = other.box_extent_;
+  max_magnitude_ = other.max_magnitude_;
+    box_extent_ = other.box_extent_;
+    max_magnitude_ = other.max_magnitude_;
     id_ = other.id_;
     graph_ = other.graph_;
     start_table_ = other.start_table_;
@@ -246,6 +254,8 @@ Polytope::Polytope(Polytope&& other) noexcept
       mean_(other.mean_),
       box_lower_(other.box_lower_),
       box_upper_(other.box_upper_),
+      box_extent_(other.box_extent_),
+      max_magnitude_(other.max_magnitude_),
       id_(other.id_),
       graph_(std::move(other.graph_)),
       start_table_(std::move(other.start_table_)),
@@ -258,6 +268,8 @@ Polytope& Polytope::operator=(Polytope&& other) noexcept {
   mean_ = other.mean_;
   box_lower_ = other.box_lower_;
   box_upper_ = other.box_upper_;
+  box_extent_ = other.box_extent_;
+  max_magnitude_ = other.max_magnitude_;
   id_ = other.id_;
   graph_ = std::move(other.graph_);
   start_table_ = std::move(other.start_table_);

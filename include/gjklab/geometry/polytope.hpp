@@ -92,6 +92,10 @@ class Polytope {
   /// Corners of the axis-aligned bounding box; computed once, at construction.
   const Vec3& box_lower() const { return box_lower_; }
   const Vec3& box_upper() const { return box_upper_; }
+  /// The box's largest side and the cloud's largest |coordinate| (length units): the scales
+  /// that decide, in two comparisons, whether a pair is far from the origin (recentring.hpp).
+  double box_extent() const { return box_extent_; }
+  double max_magnitude() const { return max_magnitude_; }
   /// Mean of the vertices (not the volume centroid); computed once, at construction.
   Vec3 vertex_mean() const { return mean_; }
   /// Identity of the vertex list, for caches of data derived from it (hull features, a peer
@@ -129,6 +133,8 @@ class Polytope {
   Vec3 mean_ = Vec3::Zero();
   Vec3 box_lower_ = Vec3::Zero();
   Vec3 box_upper_ = Vec3::Zero();
+  double box_extent_ = 0;
+  double max_magnitude_ = 0;
   std::uint64_t id_ = 0;
   std::shared_ptr<const HullGraph> graph_;
   /// Start vertices of hill climbing: for each cell of a cube map of directions (6 faces of

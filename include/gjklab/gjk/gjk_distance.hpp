@@ -399,8 +399,9 @@ Vec3 start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
   return -search;
 }
 
-/// The outcome of one solved step: the simplex plus w, solved by the sub-algorithm.
-enum class StepOutcome : std::uint8_t { progressed, stalled, no_progress, stop };
+/// What becomes of a step whose simplex plus w was solved: taken (‖v‖ decreased, or a bounded
+/// stall), the momentum dropped (restart), or the query stops with no_progress.
+enum class StepOutcome : std::uint8_t { progressed, stalled, restart, stop };
 
 /// The GJK distance loop of every variant: the search direction comes from `directions` (see
 /// directions.hpp), everything else is shared: the cold or warm start, the stopping tests, the
@@ -512,41 +513,46 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       trace(next, vw, GjkStep::contact);
       return {Termination::converged, true};
     }
-    // The candidate simplex and its closest point: the solution, or after a separation
-    // certificate a full simplex's nearest face (contact would contradict the certificate).
-    Simplex candidate_simplex = simplex;
-    ClosestOnSimplex candidate;
-    bool keeps_next = false;
-    if (full) {
-      candidate_simplex.push(next);
-      if (!detail::reduce_to_closest_face(sub, candidate_simplex, candidate)) {
-        trace(next, vw, GjkStep::degenerate);
-        return {Termination::degenerate_simplex, false};
-      }
-      keeps_next = candidate_simplex.contains(next.w);
-    } else {
-      keeps_next = (s.subset >> simplex.size()) & 1u;
-    }
     // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
     // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
     // an accelerated query drops its momentum instead.
-    const double new_vv = full ? candidate.v.squaredNorm() : s.closest.squaredNorm();
-    const bool progressed = new_vv < vv;
-    if (!progressed && accelerated) {
+    auto judge = [&](double new_vv, bool keeps_next) {
+      if (new_vv < vv) return StepOutcome::progressed;
+      if (accelerated) return StepOutcome::restart;
+      if (may_stall(vv, vw, ww, new_vv, keeps_next, stalls)) return StepOutcome::stalled;
+      return StepOutcome::stop;
+    };
+    StepOutcome outcome;
+    if (full) {
+      // Contact is ruled out (by the separation certificate or the tetrahedron test): the
+      // closest point lies on one of the faces.
+      Simplex reduced = simplex;
+      reduced.push(next);
+      ClosestOnSimplex candidate;
+      if (!detail::reduce_to_closest_face(sub, reduced, candidate)) {
+        trace(next, vw, GjkStep::degenerate);
+        return {Termination::degenerate_simplex, false};
+      }
+      outcome = judge(candidate.v.squaredNorm(), reduced.contains(next.w));
+      if (outcome == StepOutcome::progressed || outcome == StepOutcome::stalled) {
+        simplex = reduced;
+        best = candidate;
+      }
+    } else {
+      outcome = judge(s.closest.squaredNorm(), (s.subset >> simplex.size()) & 1u);
+      if (outcome == StepOutcome::progressed || outcome == StepOutcome::stalled)
+        apply_solution(s, next, simplex, best);
+    }
+    if (outcome == StepOutcome::restart) {
       accelerated = false;
       trace(next, vw, GjkStep::momentum_restart);
       continue;
     }
-    if (!progressed && !may_stall(vv, vw, ww, new_vv, keeps_next, stalls)) {
+    if (outcome == StepOutcome::stop) {
       trace(next, vw, GjkStep::no_progress);
       return {Termination::no_progress, false};
     }
-    if (full) {
-      simplex = candidate_simplex;
-      best = candidate;
-    } else {
-      apply_solution(s, next, simplex, best);
-    }
+    const bool progressed = outcome == StepOutcome::progressed;
     stalls = progressed ? 0 : stalls + 1;
     trace(next, vw,
           out.iterations == options.max_iterations ? GjkStep::step_limit

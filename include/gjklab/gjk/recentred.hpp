@@ -5,6 +5,7 @@
 // origin are queried as given.
 #pragma once
 
+#include <algorithm>
 #include <concepts>
 #include <optional>
 
@@ -40,7 +41,14 @@ inline SphereSwept<Polytope> with_core(const SphereSwept<Polytope>& original,
 template <Recentrable A, Recentrable B>
 std::optional<Vec3> recentring_of(const A& a, const B& b, bool recenter) {
   if (!recenter) return std::nullopt;
-  return exact_recentring(core_of(a), core_of(b));
+  // The inline quick reject of every pair near the origin: the translated pair spans at least
+  // each cloud's own box, so it cannot be 8 times smaller than the largest coordinate unless
+  // both boxes are.
+  const Polytope &pa = core_of(a), &pb = core_of(b);
+  const double extent = std::max(pa.box_extent(), pb.box_extent());
+  const double magnitude = std::max(pa.max_magnitude(), pb.max_magnitude());
+  if (!(8 * extent <= magnitude)) return std::nullopt;
+  return exact_recentring(pa, pb);
 }
 
 /// The simplex with its points of A and B moved by t (w = a − b is unchanged).
