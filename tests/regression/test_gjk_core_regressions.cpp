@@ -9,6 +9,7 @@
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/trace.hpp"
 
@@ -145,4 +146,24 @@ TEST_CASE("origin_outside_tetrahedron: certain only beyond rounding", "[regressi
   const std::array<Vec3, 4> on_face = {Vec3(1, 0, 0), Vec3(-1, 1, 0), Vec3(-1, -1, 0),
                                        Vec3(0, 0, 1)};
   CHECK_FALSE(origin_outside_tetrahedron(on_face));
+}
+
+TEST_CASE("gjk-bool on cube points 6 vs 59, 0.03 apart: a period-10 cycle is caught",
+          "[regression]") {
+  // Quickstart seed 1, case 7786: the triple-product walk came back to the same ten states
+  // over and over and ran into its 64-step limit; the ring of its last six states could not
+  // see a period of 10. Brent's detection catches it, and the distance walk decides.
+  const auto c = load_case("gjk_bool_cycle_period_10_cube_points_6_vs_59.jsonl");
+  const auto exact = exact::solve(c.a, c.b);
+  REQUIRE_FALSE(exact.intersect);
+  const Polytope a(c.a), b(c.b);
+  TraceRecorder trace;
+  const BooleanResult r = gjk_intersect(a, b, {}, trace);
+  CHECK_FALSE(r.intersect);
+  CHECK(r.termination == Termination::converged);
+  CHECK(r.iterations < GjkBooleanDefaults::max_iterations);
+  int cycled = 0;
+  for (const auto& row : trace.iterations)
+    cycled += row.step == GjkStep::cycled;
+  CHECK(cycled == 1);
 }

@@ -12,10 +12,13 @@
 // simplex needs three support points instead of four.
 //
 // Rounding. When the origin lies on a segment of the simplex within rounding, the walk reports
-// contact (touching, within a few ε of the segment's length, counts as intersecting). A walk
-// that, after its first dozen steps, comes back to one of its last six states (direction and
-// simplex) would cycle: it stops with Termination::cycling, its answer undetermined and
-// reported as "not intersecting", as at the step limit.
+// contact (touching, within a few ε of the segment's length, counts as intersecting).
+//
+// Cycles. Triple-product directions do not make the walk monotone, and it can come back to a
+// state (direction and simplex) it was in: quickstart case 7786, a separated pair, cycles
+// with period 10. Brent's cycle detection catches a cycle of any period; the query then hands
+// over to the GJK distance walk, whose ‖v‖ decreases at every step, and answers with its
+// decision (GjkStep::cycled in the trace, then the distance walk's rows).
 #pragma once
 
 #include "gjklab/geometry/support.hpp"
@@ -36,23 +39,28 @@ struct BooleanSimplex {
 };
 
 /// The iteration from which the walk watches for a cycle (queries that end sooner, nearly all,
-/// skip the bookkeeping); a cycle is caught within a few periods after it.
+/// skip the bookkeeping).
 inline constexpr int kCycleWatchStart = 12;
 
-/// The last few states (search direction and simplex) of a walk. The walk is deterministic, so
-/// a state that comes back means a cycle that would repeat until the step limit. (A support
-/// point alone may legitimately come back: the boolean walk is not monotone.)
-class RecentStates {
+/// Brent's cycle detection on the walk's states (search direction and simplex, bit for bit).
+/// The walk is deterministic, so a state that comes back means a cycle that would repeat until
+/// the step limit. One state is kept, replaced whenever the count since it reaches the next
+/// power of two, so a cycle of any period p is caught within about 2·max(p, steps before it)
+/// steps. (A ring of the last six states missed the period-10 cycle of quickstart case 7786.)
+/// A support point alone may legitimately come back: the boolean walk is not monotone.
+class CycleDetector {
  public:
-  bool contains(const Vec3& direction, const BooleanSimplex& simplex) const {
-    for (int i = 0; i < count_; ++i)
-      if (states_[i].direction == direction && same(states_[i].simplex, simplex)) return true;
+  /// Records the state; true if it equals the kept one (the walk is in a cycle).
+  bool seen(const Vec3& direction, const BooleanSimplex& simplex) {
+    if (kept_ && kept_direction_ == direction && same(kept_simplex_, simplex)) return true;
+    if (!kept_ || ++since_kept_ == period_bound_) {
+      kept_ = true;
+      kept_direction_ = direction;
+      kept_simplex_ = simplex;
+      since_kept_ = 0;
+      period_bound_ *= 2;
+    }
     return false;
-  }
-  void push(const Vec3& direction, const BooleanSimplex& simplex) {
-    states_[next_] = {direction, simplex};
-    next_ = (next_ + 1) % kSize;
-    count_ = count_ < kSize ? count_ + 1 : kSize;
   }
 
  private:
@@ -62,14 +70,11 @@ class RecentStates {
       if (x.points[i] != y.points[i]) return false;
     return true;
   }
-  struct State {
-    Vec3 direction;
-    BooleanSimplex simplex;
-  };
-  static constexpr int kSize = 6;
-  State states_[kSize];
-  int next_ = 0;
-  int count_ = 0;
+  bool kept_ = false;
+  Vec3 kept_direction_ = Vec3::Zero();
+  BooleanSimplex kept_simplex_;
+  int since_kept_ = 0;
+  int period_bound_ = 1;
 };
 
 /// Updates simplex and direction for the segment, triangle or tetrahedron case.
@@ -79,6 +84,23 @@ bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
 }  // namespace detail
 
 namespace detail {
+
+/// The answer of a boolean walk that cycled, decided by the GJK distance walk on the same
+/// shapes (bounded by the same max_iterations); its iterations and support calls add to the
+/// walk's, and its termination is the query's.
+template <SupportMap A, SupportMap B, class Observer>
+BooleanResult decide_by_distance(const A& a, const B& b, const GjkBooleanOptions& options,
+                                 BooleanResult out, Observer& observer) {
+  GjkDistanceOptions distance;
+  distance.max_iterations = options.max_iterations;
+  distance.recenter = false;  // the walk's shapes are re-centred already where it applies
+  const DistanceResult r = gjk_distance(a, b, distance, observer);
+  out.intersect = r.intersect;
+  out.iterations += r.iterations;
+  out.support_calls += r.support_calls;
+  out.termination = r.termination;
+  return out;
+}
 
 /// The boolean walk on the shapes as given (gjk_intersect below re-centres first).
 template <SupportMap A, SupportMap B, class Observer>
@@ -108,7 +130,7 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     out.termination = t;
     return out;
   };
-  detail::RecentStates recent;
+  detail::CycleDetector cycles;
   if (from_centre && options.start == GjkBooleanStart::centre_point) {
     // c is a point of the hull of A − B: a simplex vertex like any support point, but free.
     simplex.points[0] = centre;
@@ -142,14 +164,12 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
       trace(direction, {}, GjkStep::non_finite);
       return finish(false, Termination::numerical_failure);
     }
-    // A state seen in the last few steps: the walk cycles, and the answer is undetermined.
-    // Watched only from kCycleWatchStart on: typical queries end before it and pay nothing.
-    if (out.iterations >= detail::kCycleWatchStart) {
-      if (recent.contains(direction, simplex)) {
-        trace(direction, {}, GjkStep::repeated_support);
-        return finish(false, Termination::cycling);
-      }
-      recent.push(direction, simplex);
+    // A state seen before: the walk cycles, and the triple-product directions will not decide.
+    // The monotone distance walk (‖v‖ decreases at every step) decides from here. Watched only
+    // from kCycleWatchStart on: typical queries end before it and pay nothing.
+    if (out.iterations >= detail::kCycleWatchStart && cycles.seen(direction, simplex)) {
+      trace(direction, {}, GjkStep::cycled);
+      return decide_by_distance(a, b, options, out, observer);
     }
     const Vec3 d = direction;
     const SimplexVertex w = detail::minkowski_support(a, b, d);

@@ -29,6 +29,8 @@ enum class GjkStep : std::uint8_t {
   /// ‖v‖ did not decrease in floating point, but w passed v·w < ‖v‖² by more than the rounding
   /// of v·w, so exact GJK would have progressed: the simplex with w is kept (bounded count)
   stalled,
+  /// (boolean GJK) the walk came back to an earlier state; the GJK distance walk decides
+  cycled,
 };
 
 constexpr std::string_view to_string(GjkStep s) {
@@ -55,6 +57,8 @@ constexpr std::string_view to_string(GjkStep s) {
       return "momentum_restart";
     case GjkStep::stalled:
       return "stalled";
+    case GjkStep::cycled:
+      return "cycled";
   }
   return "unknown";
 }
