@@ -59,7 +59,7 @@ std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
       j["depth_method"] = to_string(o.exact->depth_method);
     }
   }
-  return j.dump();
+  return experiment::json_line(j);
 }
 
 std::string error_line(const std::string& id, const std::string& problem,
@@ -68,7 +68,7 @@ std::string error_line(const std::string& id, const std::string& problem,
   j["id"] = id;
   if (algorithm) j["algorithm"] = algorithm->name;
   j["error"] = problem;
-  return j.dump();
+  return experiment::json_line(j);
 }
 
 /// Every selected algorithm on one valid case: one output line each. Unless the algorithms

@@ -5,8 +5,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gjklab/geometry/polytope.hpp"
 
@@ -21,6 +25,76 @@ std::string lower_extension(const std::filesystem::path& file) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
+/// Whitespace-separated words of a header line.
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;)
+    out.push_back(w);
+  return out;
+}
+
+/// A vertex count a header declares, checked against the file's size (every vertex takes at
+/// least one byte), so that a corrupt count fails here with its line instead of as an
+/// allocation of gigabytes inside the reader.
+void check_vertex_count(const std::string& name, int line, const std::string& text,
+                        std::uintmax_t file_size) {
+  unsigned long long count = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), count);
+  if (ec != std::errc() || end != text.data() + text.size())
+    throw std::runtime_error(name + ":" + std::to_string(line) + ": vertex count '" + text +
+                             "' is not a non-negative integer");
+  if (count > file_size)
+    throw std::runtime_error(name + ":" + std::to_string(line) + ": declares " + text +
+                             " vertices, more than the file's " + std::to_string(file_size) +
+                             " bytes can hold");
+}
+
+/// The checks of a PLY header that CGAL's reader does not make (it crashed on them): the
+/// vertex count, and x, y, z declared as scalar properties (not lists).
+void check_ply_header(const std::filesystem::path& file, std::uintmax_t file_size) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  bool in_vertex = false;
+  for (int number = 1; number <= 1000 && std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto w = words(line);
+    if (w.empty()) continue;
+    if (w[0] == "end_header") return;
+    if (w[0] == "element") {
+      in_vertex = w.size() >= 3 && w[1] == "vertex";
+      if (in_vertex) check_vertex_count(name, number, w[2], file_size);
+    } else if (w[0] == "property" && in_vertex && w.size() >= 2 && w[1] == "list") {
+      const std::string& property = w.back();
+      if (property == "x" || property == "y" || property == "z")
+        throw std::runtime_error(name + ":" + std::to_string(number) + ": vertex property '" +
+                                 property + "' is a list; coordinates must be scalars");
+    }
+  }
+  throw std::runtime_error(name + ": no end_header within the first 1000 lines of the PLY header");
+}
+
+/// The vertex count of an OFF header (its first count line), checked as above.
+void check_off_header(const std::filesystem::path& file, std::uintmax_t file_size) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  bool header_seen = false;
+  for (int number = 1; number <= 1000 && std::getline(in, line); ++number) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    auto w = words(line);
+    if (w.empty()) continue;
+    if (!header_seen && w[0].size() <= 4 && w[0].ends_with("OFF")) {
+      header_seen = true;
+      w.erase(w.begin());  // counts may follow the keyword on the same line
+      if (w.empty()) continue;
+    }
+    check_vertex_count(name, number, w[0], file_size);
+    return;
+  }
+}
+
 }  // namespace
 
 bool is_mesh_file(const std::filesystem::path& file) {
@@ -35,6 +109,11 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw std::runtime_error(name + ": no such file");
+  const std::uintmax_t file_size = std::filesystem::file_size(file, ec);
+  if (ec) throw std::runtime_error(name + ": cannot read the file size");
+  const std::string ext = lower_extension(file);
+  if (ext == ".ply") check_ply_header(file, file_size);
+  if (ext == ".off") check_off_header(file, file_size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   if (!CGAL::IO::read_polygon_soup(name, points, faces))

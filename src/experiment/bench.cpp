@@ -2,14 +2,17 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <ctime>
 #include <deque>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <set>
@@ -860,12 +863,34 @@ BenchConfig load_bench_config(const std::string& path) {
         "configurations", "seed",       "cases",     "published", "description"};
     if (!known.count(std::string(key.str()))) fail("unknown key '" + std::string(key.str()) + "'");
   }
-  if (auto v = t["reference"].value<std::string>()) c.reference = *v;
-  if (auto v = t["samples"].value<std::int64_t>()) c.samples = static_cast<int>(*v);
-  if (auto v = t["batch_seconds"].value<double>()) c.batch_seconds = *v;
-  if (auto v = t["configurations"].value<std::int64_t>()) c.configurations = static_cast<int>(*v);
-  if (auto v = t["seed"].value<std::int64_t>()) c.seed = static_cast<std::uint64_t>(*v);
-  if (auto v = t["cases"].value<std::string>()) c.case_filter = *v;
+  // Every value checked for its type and range (the command line's ranges): a value of the
+  // wrong type is an error, never ignored, and no value is narrowed.
+  auto text = [&](const char* key, std::string& out) {
+    if (const toml::node* n = t.get(key)) {
+      if (!n->is_string()) fail(std::string(key) + " must be a string");
+      out = n->as_string()->get();
+    }
+  };
+  auto integer = [&](const char* key, std::int64_t lo,
+                     std::int64_t hi) -> std::optional<std::int64_t> {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_integer() || n->as_integer()->get() < lo || n->as_integer()->get() > hi)
+      fail(std::string(key) + " must be an integer in [" + std::to_string(lo) + ", " +
+           std::to_string(hi) + "]");
+    return n->as_integer()->get();
+  };
+  text("reference", c.reference);
+  text("cases", c.case_filter);
+  if (auto v = integer("samples", 1, 100000)) c.samples = static_cast<int>(*v);
+  if (auto v = integer("configurations", 1, 100000)) c.configurations = static_cast<int>(*v);
+  if (auto v = integer("seed", 0, std::numeric_limits<std::int64_t>::max()))
+    c.seed = static_cast<std::uint64_t>(*v);
+  if (const toml::node* n = t.get("batch_seconds")) {
+    const auto v = n->value<double>();  // integers convert exactly
+    if (!v || !(*v >= 0 && *v <= 10)) fail("batch_seconds must be a number in [0, 10]");
+    c.batch_seconds = *v;
+  }
   if (const toml::table* pub = t["published"].as_table()) {
     if (auto v = (*pub)["source"].value<std::string>()) c.published_source = *v;
     if (const toml::table* pairs = (*pub)["pair_us"].as_table())
@@ -878,7 +903,13 @@ BenchConfig load_bench_config(const std::string& path) {
       for (const auto& [k, v] : *scene) {
         const auto x = v.value<double>();
         if (!x) fail("published.scene_ms." + std::string(k.str()) + " must be a number");
-        c.published_scene_ms[std::stoi(std::string(k.str()))] = *x;
+        int objects = 0;
+        const std::string_view name = k.str();
+        const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), objects);
+        if (ec != std::errc() || end != name.data() + name.size() || objects < 1)
+          fail("published.scene_ms: key '" + std::string(name) +
+               "' must be an object count (an integer >= 1)");
+        c.published_scene_ms[objects] = *x;
       }
   }
   return c;

@@ -6,7 +6,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <regex>
 #include <sstream>
 
 #include "gjklab/geometry/polytope.hpp"
@@ -108,7 +107,7 @@ std::vector<Vec3> read_obj(std::istream& in, const std::string& file) {
   std::vector<Vec3> points;
   for (const auto& [number, text] : content_lines(in)) {
     const auto f = fields(text);
-    if (f[0] == "v") points.push_back(parse_point(f, 1, file, number));
+    if (!f.empty() && f[0] == "v") points.push_back(parse_point(f, 1, file, number));
   }
   return points;
 }
@@ -127,6 +126,10 @@ std::vector<Vec3> read_off(std::istream& in, const std::string& file) {
   double nv = 0;
   if (counts.empty() || !parse_double(counts[0], nv) || nv < 0 || nv != std::floor(nv))
     throw InputError(file, lines[next].first, "expected the vertex count");
+  if (nv > static_cast<double>(lines.size() - next - 1))
+    throw InputError(file, lines[next].first,
+                     "declares " + std::string(counts[0]) + " vertices, but only " +
+                         std::to_string(lines.size() - next - 1) + " lines follow");
   ++next;
   std::vector<Vec3> points;
   for (std::size_t i = 0; i < static_cast<std::size_t>(nv); ++i, ++next) {
@@ -171,17 +174,58 @@ double json_radius(const nlohmann::json& j, const char* key) {
   const auto& v = j.at(key);
   if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() >= 0))
     throw std::invalid_argument(std::string(key) + ": expected a finite number >= 0, got " +
-                                v.dump());
+                                json_line(v));
   return v.get<double>();
 }
 
-/// The "id" string of a line that is not valid JSON, if one can be seen, so that the error
-/// names the case the user wrote.
+/// The "id" string of a line that is not valid JSON, if one can be seen ("id", optional
+/// blanks, a colon, optional blanks, then a string without escapes), so that the error names
+/// the case the user wrote. A plain scan: a regex engine recurses once per character and
+/// overflowed the stack on a 30 000-character id.
 std::optional<std::string> id_from_unparsed(std::string_view text) {
-  static const std::regex id_pattern(R"re("id"\s*:\s*"([^"\\]*)")re");
-  std::match_results<std::string_view::const_iterator> m;
-  if (std::regex_search(text.begin(), text.end(), m, id_pattern)) return m[1].str();
+  const auto is_blank = [](char c) { return c == ' ' || c == '\t'; };
+  for (std::size_t at = text.find("\"id\""); at != std::string_view::npos;
+       at = text.find("\"id\"", at + 1)) {
+    std::size_t i = at + 4;
+    while (i < text.size() && is_blank(text[i]))
+      ++i;
+    if (i >= text.size() || text[i] != ':') continue;
+    ++i;
+    while (i < text.size() && is_blank(text[i]))
+      ++i;
+    if (i >= text.size() || text[i] != '"') continue;
+    const std::size_t begin = i + 1;
+    const std::size_t end = text.find_first_of("\"\\", begin);
+    if (end == std::string_view::npos || text[end] != '"') continue;
+    return std::string(text.substr(begin, end - begin));
+  }
   return std::nullopt;
+}
+
+/// The deepest nesting of arrays and objects in a JSON text, counted outside strings, up to
+/// `limit` + 1 (the scan stops there).
+int json_depth(std::string_view text, int limit) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"')
+      in_string = true;
+    else if (c == '[' || c == '{')
+      deepest = std::max(deepest, ++depth);
+    else if (c == ']' || c == '}')
+      --depth;
+    if (deepest > limit) break;
+  }
+  return deepest;
 }
 
 }  // namespace
@@ -208,6 +252,9 @@ std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
 
 CaseOrError parse_case_line(std::string_view text, int line) {
   const std::string default_id = "line " + std::to_string(line);
+  if (json_depth(text, kMaxJsonDepth) > kMaxJsonDepth)
+    return CaseError{id_from_unparsed(text).value_or(default_id), line,
+                     "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -224,7 +271,7 @@ CaseOrError parse_case_line(std::string_view text, int line) {
   c.id = default_id;
   if (j.contains("id")) {
     const auto& id = j.at("id");
-    c.id = id.is_string() ? id.get<std::string>() : id.dump();
+    c.id = id.is_string() ? id.get<std::string>() : json_line(id);
   }
   try {
     c.a = json_cloud(j, "a");
@@ -260,7 +307,11 @@ std::string case_to_json_line(const PointCase& c) {
   nlohmann::json j{{"id", c.id}, {"a", cloud(c.a)}, {"b", cloud(c.b)}};
   if (c.radius_a != 0) j["radius_a"] = c.radius_a;
   if (c.radius_b != 0) j["radius_b"] = c.radius_b;
-  return j.dump();
+  return json_line(j);
+}
+
+std::string json_line(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace gjklab::experiment

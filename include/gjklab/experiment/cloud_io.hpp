@@ -7,6 +7,8 @@
 #pragma once
 
 #include <filesystem>
+
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -64,5 +66,14 @@ std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path);
 
 /// The JSON line of a case, with every coordinate written to round-trip exactly.
 std::string case_to_json_line(const PointCase& c);
+
+/// Deepest nesting of arrays and objects a cases line may have (the deepest valid case nests
+/// 3 levels: {"a": [[x, y, z], …]}); deeper lines are rejected before they are parsed.
+inline constexpr int kMaxJsonDepth = 32;
+
+/// One JSON value as one output line, safe for any bytes: strings that are not valid UTF-8
+/// (a case id or a file name read from disk) have each invalid byte replaced by U+FFFD rather
+/// than making the whole line, and the program, fail.
+std::string json_line(const nlohmann::json& j);
 
 }  // namespace gjklab::experiment
