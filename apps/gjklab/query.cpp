@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <cmath>
 #include <istream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -147,6 +148,11 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
 }
 
 int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::ostream& err) {
+  // CLI11's range check lets NaN through (every comparison with NaN is false).
+  if (!std::isfinite(args.radius_a) || !std::isfinite(args.radius_b)) {
+    err << "gjklab query: --radius-a/--radius-b must be finite numbers >= 0\n";
+    return 2;
+  }
   if (args.cases.empty() == (args.files.size() != 2)) {
     err << "gjklab query: give two point files or --cases FILE (not both)\n";
     return 2;

@@ -1,9 +1,12 @@
 #include "gjklab/replay.hpp"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <ostream>
+#include <string>
 
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/algorithms.hpp"
@@ -79,7 +82,18 @@ std::string differences(const experiment::Outcome& now, const AlgorithmRecord& t
 CLI::App* add_replay_command(CLI::App& app, ReplayArgs& args) {
   CLI::App* cmd = app.add_subcommand("replay", "rerun an archived case, optionally traced");
   cmd->add_option("archive", args.archive, "HDF5 archive written by `gjklab run`")->required();
-  cmd->add_option("--case", args.case_id, "case id")->required();
+  // Checked as text: converted directly, "-1" would wrap to 2^64 − 1.
+  cmd->add_option("--case", args.case_id, "case id")
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            std::uint64_t id = 0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+            return ec == std::errc() && end == text.data() + text.size()
+                       ? std::string()
+                       : "'" + text + "' is not a case id (an integer from 0 to 2^64 - 1)";
+          },
+          "CASE_ID"));
   cmd->add_option("--algorithm", args.algorithm,
                   "one result group (e.g. gjk-johnson or gjk-johnson@max_iterations=8)");
   cmd->add_flag("--trace", args.trace, "print every iteration (GJK algorithms)");

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <ostream>
 
@@ -18,13 +19,32 @@ namespace gjklab::cli {
 
 namespace {
 
-/// Set by the first SIGINT; a second one gets the default action (terminate).
+/// Set by the first SIGINT or SIGTERM; a second one gets the default action (terminate).
 std::atomic<bool> interrupted{false};
 
-extern "C" void on_sigint(int) {
+extern "C" void on_stop_signal(int signal) {
   interrupted = true;
-  std::signal(SIGINT, SIG_DFL);
+  std::signal(signal, SIG_DFL);
 }
+
+/// While alive, SIGINT and SIGTERM (a cluster's scheduler stopping a job) ask the run to stop:
+/// it finishes the started cases and leaves its archive incomplete and resumable.
+class StopSignals {
+ public:
+  StopSignals()
+      : previous_int_(std::signal(SIGINT, on_stop_signal)),
+        previous_term_(std::signal(SIGTERM, on_stop_signal)) {}
+  ~StopSignals() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
 
 /// Prints the end of a run: the summary, or where an incomplete archive was left.
 int report_run(const experiment::RunReport& report, const std::string& what, std::ostream& out,
@@ -96,9 +116,8 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
                "--cases and --force do not apply\n";
         return 2;
       }
-      const auto previous = std::signal(SIGINT, on_sigint);
+      const StopSignals stop_signals;
       const experiment::RunReport report = experiment::resume_experiment(args.resume, options);
-      std::signal(SIGINT, previous);
       return report_run(
           report, "resumed run (" + std::to_string(report.resumed_cases) + " cases taken over)",
           out, err);
@@ -107,9 +126,15 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
     if (!args.output.empty()) options.output = args.output;
     if (args.cases > 0) options.cases = args.cases;
     options.force = args.force;
-    const auto previous = std::signal(SIGINT, on_sigint);
+    const std::filesystem::path output = options.output.value_or(config.output);
+    std::error_code ec;
+    if (std::filesystem::equivalent(output, args.experiment, ec)) {
+      err << "gjklab run: the archive " << output.string()
+          << " would overwrite the experiment file itself; choose another --out\n";
+      return 2;
+    }
+    const StopSignals stop_signals;
     const experiment::RunReport report = experiment::run_experiment(config, options);
-    std::signal(SIGINT, previous);
     return report_run(report, "experiment '" + config.name + "'", out, err);
   } catch (const experiment::ConfigError& e) {
     err << "gjklab run: " << e.what() << "\n";

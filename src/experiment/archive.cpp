@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -204,6 +206,11 @@ struct ArchiveWriter::Impl {
   std::optional<Columns> columns;
   bool finished = false;
   bool broken = false;  // a write failed: the columns may differ in length
+  // The files this writer made: only these may it remove when it fails. (A run that failed
+  // on another run's lock once deleted that run's FILE.tmp.)
+  bool made_file = false;      // FILE.tmp.new, created exclusively
+  bool made_temp = false;      // FILE.tmp, linked from it
+  bool made_snapshot = false;  // FILE.tmp.checkpoint
 
   Impl(fs::path final_p, fs::path temp_p, bool overwrite_, const ArchiveHeader& h)
       : final_path(std::move(final_p)),
@@ -255,6 +262,7 @@ struct ArchiveWriter::Impl {
     if (!ec) sync_file(fresh);
     if (!ec) fs::rename(fresh, snapshot_path(temp_path), ec);
     if (ec) cx.error("cannot write the checkpoint copy " + fresh.string() + ": " + ec.message());
+    made_snapshot = true;
     last_snapshot = Clock::now();
     last_copy = *last_snapshot - start;
   }
@@ -278,8 +286,12 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
   // cannot be read.
   file_path = temp_path;
   file_path += ".new";
-  file = cx.handle(H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
-                   "cannot create the file");
+  // Exclusive: a FILE.tmp.new that exists belongs to a run that is starting (or was killed
+  // while starting), and is never truncated.
+  file = cx.handle(H5Fcreate(file_path.c_str(), H5F_ACC_EXCL, fcpl.get(), fapl.get()), H5Fclose,
+                   "cannot create the file " + file_path.string() +
+                       " (does another run write the same archive?)");
+  made_file = true;
   root = cx.handle(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, "cannot open group /");
   const hid_t r = root.get();
 
@@ -553,6 +565,58 @@ void ArchiveWriter::Impl::append_traces(TraceColumns& c, std::span<const CaseRes
   c.weights.append(cx, weights);
 }
 
+namespace {
+
+/// Before a run creates FILE.tmp.new: the temporary names must be free, or --force given. An
+/// existing FILE.tmp is an interrupted run, resumable, and FILE.tmp.new a run that is starting
+/// or was killed while starting: neither is replaced silently.
+void claim_temporary_names(const fs::path& temp, bool overwrite) {
+  fs::path creating = temp;
+  creating += ".new";
+  std::error_code ec;
+  if (overwrite) {
+    fs::remove(creating, ec);
+    return;
+  }
+  if (fs::exists(temp, ec))
+    throw ArchiveError(temp.string() +
+                       " exists: a run of this archive is still going or was interrupted (continue "
+                       "an interrupted one with `gjklab run --resume " +
+                       temp.string() + "`, or start afresh with --force)");
+  if (fs::exists(creating, ec))
+    throw ArchiveError(creating.string() +
+                       " exists: another run is starting on this archive, or one was killed "
+                       "while starting (remove it, or use --force)");
+}
+
+/// Gives the created file its FILE.tmp name. Without --force a FILE.tmp that appeared in the
+/// meantime (another run) is never replaced: link(2) fails on an existing name, where
+/// rename(2) would overwrite it.
+void give_temporary_name(const fs::path& created, const fs::path& temp, bool overwrite,
+                         const h5::Context& cx) {
+  std::error_code ec;
+  if (overwrite) {
+    fs::rename(created, temp, ec);
+    if (ec) cx.error("cannot rename it from " + created.string() + ": " + ec.message());
+    return;
+  }
+  if (::link(created.c_str(), temp.c_str()) == 0) {
+    fs::remove(created, ec);
+    return;
+  }
+  const int error = errno;
+  if (error == EEXIST)
+    cx.error("cannot name it " + temp.string() +
+             ": that file appeared meanwhile (does another run write the same archive?)");
+  // A file system without hard links: check, then rename (a narrow race, but no worse).
+  if (fs::exists(temp, ec))
+    cx.error("cannot name it " + temp.string() + ": that file appeared meanwhile");
+  fs::rename(created, temp, ec);
+  if (ec) cx.error("cannot rename it from " + created.string() + ": " + ec.message());
+}
+
+}  // namespace
+
 ArchiveWriter::ArchiveWriter(const fs::path& final_path, const ArchiveHeader& header,
                              bool overwrite) {
   const std::string name = final_path.string();
@@ -572,21 +636,23 @@ ArchiveWriter::ArchiveWriter(const fs::path& final_path, const ArchiveHeader& he
 
   fs::path temp = final_path;
   temp += ".tmp";
+  claim_temporary_names(temp, overwrite);
   h5::quiet_errors();
   auto impl = std::make_unique<Impl>(final_path, temp, overwrite, header);
   try {
     impl->create(header);
     impl->checkpoint();  // no rows yet: a run killed from now on resumes from this copy
-    fs::rename(impl->file_path, temp, ec);
-    if (ec)
-      impl->cx.error("cannot rename it from " + impl->file_path.string() + ": " + ec.message());
+    give_temporary_name(impl->file_path, temp, overwrite, impl->cx);
+    impl->made_temp = true;
     impl->file_path = temp;
   } catch (...) {
     const fs::path created = impl->file_path;
+    const bool made_file = impl->made_file, made_temp = impl->made_temp,
+               made_snapshot = impl->made_snapshot;
     impl.reset();  // closes whatever was opened
-    fs::remove(created, ec);
-    fs::remove(temp, ec);
-    fs::remove(snapshot_path(temp), ec);
+    if (made_file && !made_temp) fs::remove(created, ec);
+    if (made_temp) fs::remove(temp, ec);
+    if (made_snapshot) fs::remove(snapshot_path(temp), ec);
     throw;
   }
   impl_ = std::move(impl);

@@ -285,6 +285,9 @@ CaseOrError parse_case_line(std::string_view text, int line) {
 }
 
 std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path.string(), 0, "is a folder, not a cases file");
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), 0, "cannot open file");
   std::vector<CaseOrError> out;
@@ -312,6 +315,10 @@ std::string case_to_json_line(const PointCase& c) {
 
 std::string json_line(const nlohmann::json& j) {
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::string json_line(const nlohmann::ordered_json& j) {
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 }  // namespace gjklab::experiment

@@ -802,6 +802,9 @@ AlgorithmSpec read_algorithm(const Section& s) {
 
 constexpr std::string_view kGeometrySweeps[] = {"offset", "scale"};
 
+/// The most values a sweep may have (see read_sweep).
+constexpr std::size_t kMaxSweepValues = 256;
+
 /// [sweep]: parameter = an algorithm option (each value becomes its own algorithm group) or a
 /// geometry parameter (each value its own family group, on the same base pairs).
 void read_sweep(const Section& s, ExperimentConfig& config) {
@@ -813,6 +816,12 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
   const toml::array* values = values_node->as_array();
   if (!values || values->empty())
     s.fail(*values_node, "values", "expected a non-empty array of values");
+  // Each value is a result group (its own columns in the archive, held in memory per batch):
+  // a million of them once took 8 GB before failing.
+  if (values->size() > kMaxSweepValues)
+    s.fail(*values_node, "values",
+           "at most " + std::to_string(kMaxSweepValues) + " values (got " +
+               std::to_string(values->size()) + ")");
 
   if (std::find(std::begin(kGeometrySweeps), std::end(kGeometrySweeps), *parameter) !=
       std::end(kGeometrySweeps)) {

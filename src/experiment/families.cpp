@@ -108,13 +108,20 @@ Mat3 random_rotation(gsl_rng* r) {
 }
 
 std::size_t draw_family(gsl_rng* r, const std::vector<FamilySpec>& families) {
+  // Weights are relative: scaled by the largest, so that their sum cannot overflow (two
+  // weights of 1e308 once summed to infinity and sent every case to the last family). The
+  // scaling is by a power of two, which leaves the draws of ordinary weights bit for bit.
+  double largest = 0;
+  for (const FamilySpec& f : families)
+    largest = std::max(largest, f.weight);
+  const double unit = largest > 0x1p1000 ? std::exp2(std::floor(std::log2(largest))) : 1.0;
   double total = 0;
   for (const FamilySpec& f : families)
-    total += f.weight;
+    total += f.weight / unit;
   const double target = uniform(r) * total;
   double cumulative = 0;
   for (std::size_t i = 0; i < families.size(); ++i) {
-    cumulative += families[i].weight;
+    cumulative += families[i].weight / unit;
     if (target < cumulative) return i;
   }
   return families.size() - 1;

@@ -75,5 +75,6 @@ inline constexpr int kMaxJsonDepth = 32;
 /// (a case id or a file name read from disk) have each invalid byte replaced by U+FFFD rather
 /// than making the whole line, and the program, fail.
 std::string json_line(const nlohmann::json& j);
+std::string json_line(const nlohmann::ordered_json& j);  ///< keys in insertion order
 
 }  // namespace gjklab::experiment
