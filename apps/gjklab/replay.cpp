@@ -102,7 +102,7 @@ CLI::App* add_replay_command(CLI::App& app, ReplayArgs& args) {
 
 int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& err) {
   try {
-    const experiment::Archive archive = experiment::read_archive(args.archive);
+    const experiment::Archive archive = experiment::read_archive_isolated(args.archive);
     const auto& h = archive.header;
     const CaseResult* found = nullptr;
     for (const CaseResult& r : archive.results)

@@ -147,7 +147,7 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
 
 int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream& err) {
   try {
-    const experiment::Archive archive = experiment::read_archive(args.archive);
+    const experiment::Archive archive = experiment::read_archive_isolated(args.archive);
     const auto& h = archive.header;
     out << "archive: " << args.archive << " (schema " << archive.schema_version << ")\n";
     out << "experiment: " << h.experiment_name << ", seed " << h.seed << ", "

@@ -3,6 +3,7 @@
 #include "gjklab/experiment/archive.hpp"
 
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <iostream>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -1022,6 +1024,54 @@ Archive read_archive(const fs::path& path) {
     h.trace_mode = h5::read_attr_string(cx, r, "/", "trace_mode");
   if (h.trace_mode != "none") read_traces(cx, r, t, a, committed_traces_for(cx, r, a.complete, h));
   return a;
+}
+
+namespace {
+
+/// Reads the archive in a forked child; throws ArchiveError if the child failed or crashed.
+void probe_in_child(const fs::path& path) {
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) return;  // cannot isolate: the caller reads unguarded
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    return;
+  }
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    int status = 0;
+    try {
+      read_archive(path);
+    } catch (const std::exception& e) {
+      const std::string message = e.what();
+      [[maybe_unused]] const auto written = ::write(pipe_fds[1], message.data(), message.size());
+      status = 1;
+    }
+    ::_exit(status);
+  }
+  ::close(pipe_fds[1]);
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, static_cast<std::size_t>(n));
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw ArchiveError(path.string() + ": corrupt: reading it made the HDF5 library crash (" +
+                       ::strsignal(WTERMSIG(status)) + "); the file cannot be used");
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0) throw ArchiveError(message);
+}
+
+}  // namespace
+
+Archive read_archive_isolated(const fs::path& path) {
+  probe_in_child(path);
+  return read_archive(path);
 }
 
 }  // namespace gjklab::experiment

@@ -278,12 +278,12 @@ namespace {
 /// short), the copy taken at a checkpoint.
 Archive read_interrupted(const std::filesystem::path& temporary) {
   try {
-    return read_archive(temporary);
+    return read_archive_isolated(temporary);
   } catch (const std::exception& unreadable) {
     const std::filesystem::path copy = snapshot_path(temporary);
     if (!std::filesystem::exists(copy)) throw;
     try {
-      return read_archive(copy);
+      return read_archive_isolated(copy);
     } catch (const std::exception& also) {
       throw std::runtime_error(std::string(unreadable.what()) +
                                "; its checkpoint copy too: " + also.what());

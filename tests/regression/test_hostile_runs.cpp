@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <vector>
 #include <string>
 
 #include "../support/cli_run.hpp"
@@ -132,4 +133,21 @@ TEST_CASE("query --radius-a nan, query --cases FOLDER, replay --case -1: clear e
   r = run_cli({"replay", dir.file("none.h5"), "--case", "-1"});
   CHECK(r.status != 0);
   CHECK(r.err.find("not a case id") != std::string::npos);
+}
+
+TEST_CASE("an archive with one flipped byte that crashes libhdf5: inspect and replay report it",
+          "[regression][hostile]") {
+  // A 50-case quickstart archive with the byte at offset 5221 changed from 0x00 to 0xe6: libhdf5
+  // segfaults in its global-heap reader (H5HG_read) while reading a variable-length string.
+  // The archive is now read first in a child process, and its crash becomes an error.
+  const std::string archive = std::string(GJKLAB_REGRESSION_DATA_DIR) +
+                              "/hostile/archive_one_byte_flipped_hdf5_segfault.h5";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"inspect", archive},
+        std::vector<std::string>{"replay", archive, "--case", "3"}}) {
+    INFO(args[0]);
+    const auto r = run_cli(args);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("corrupt: reading it made the HDF5 library crash") != std::string::npos);
+  }
 }

@@ -107,4 +107,11 @@ struct Archive {
 /// attribute (or an unsupported schema_version).
 Archive read_archive(const std::filesystem::path& path);
 
+/// read_archive for files that may be corrupt (the command line's inspect, replay, resume):
+/// the file is first read in a child process, because some corrupt files make libhdf5 itself
+/// crash (a segfault in its global-heap reader, an upstream bug). A child that dies by a
+/// signal becomes an ArchiveError saying the file is corrupt, instead of taking the program
+/// down. Call it before starting threads (it forks).
+Archive read_archive_isolated(const std::filesystem::path& path);
+
 }  // namespace gjklab::experiment
