@@ -217,9 +217,12 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
   } else if (n == "epa") {
     if (key == "max_iterations")
       o.epa.max_iterations = iterations(key, text);
-    else if (key == "max_faces")
+    else if (key == "max_faces") {
       o.epa.max_faces = iterations(key, text);
-    else if (key == "gjk_max_iterations")
+      // EPA's own bound (epa.hpp), checked here so that the error names the file and line.
+      if (o.epa.max_faces < 4 || o.epa.max_faces > (1 << 26))
+        throw std::invalid_argument("must be in [4, 2^26], got " + std::string(text));
+    } else if (key == "gjk_max_iterations")
       o.gjk_distance.max_iterations = iterations(key, text);
     else if (key == "gjk_start")
       set_distance_option(o.gjk_distance, "start", text);

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -21,6 +22,9 @@
 namespace gjklab::experiment {
 
 namespace {
+
+/// The largest sphere-swept radius (shape units), as the bound of `scale`.
+constexpr double kMaxRadius = 1e100;
 
 std::string format_message(const std::string& file, int line, const std::string& key,
                            const std::string& problem) {
@@ -278,15 +282,22 @@ class Section {
   }
 
   /// A number >= 0 (fixed) or a [lo, hi] pair with 0 < lo <= hi (a log-uniform range).
+  /// A radius: a number >= 0 or a positive [lo, hi], at most kMaxRadius (shape units, as
+  /// `scale`'s bound: a radius of 1e308 overflowed the placement's coordinates).
   std::optional<Interval> radius_interval(std::string_view key) const {
     const toml::node* node = find(key);
     if (!node) return std::nullopt;
+    Interval r;
     if (node->is_number()) {
       const double v = number_value(*node, key);
       if (!(v >= 0)) fail(*node, key, "must be >= 0, got " + round_trip(v));
-      return Interval{v, v};
+      r = Interval{v, v};
+    } else {
+      r = *positive_interval(key);
     }
-    return positive_interval(key);
+    if (!(r.hi <= kMaxRadius))
+      fail(*node, key, "must be at most " + round_trip(kMaxRadius) + ", got " + round_trip(r.hi));
+    return r;
   }
 
   /// A positive number or a [lo, hi] pair with 0 < lo <= hi.
@@ -833,6 +844,8 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
         s.fail(
             v, "values",
             *parameter == "offset" ? "offsets must be numbers >= 0" : "scales must be numbers > 0");
+      if (std::find(sweep.values.begin(), sweep.values.end(), x) != sweep.values.end())
+        s.fail(v, "values", "value " + round_trip(x) + " appears twice");
       sweep.values.push_back(x);
     }
     config.geometry_sweep = std::move(sweep);
@@ -852,8 +865,11 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
       continue;
     }
     taken = true;
+    std::set<std::string> seen;  // each value is a result group: a repeat would clash
     for (std::size_t i = 0; i < values->size(); ++i) {
       const std::string text = option_text(s, *values->get(i), "values");
+      if (!seen.insert(text).second)
+        s.fail(*values->get(i), "values", "value " + text + " appears twice");
       AlgorithmSpec copy = spec;
       try {
         set_option(copy, *parameter, text);

@@ -151,3 +151,34 @@ TEST_CASE("an archive with one flipped byte that crashes libhdf5: inspect and re
     CHECK(r.err.find("corrupt: reading it made the HDF5 library crash") != std::string::npos);
   }
 }
+
+TEST_CASE("values that only failed at run time are refused with FILE:LINE before it",
+          "[regression][hostile]") {
+  // Each once started the run, left a FILE.tmp and then failed without naming the key.
+  ScratchDir dir("hostile-run");
+  const std::string head = "name = \"late\"\nseed = 1\ncases = 4\n";
+  const std::string family = "[[family]]\nname = \"s\"\nshape = \"sphere_points\"\n";
+  struct Bad {
+    std::string body, message;
+  };
+  const Bad bad[] = {
+      {head + family + "radius = 1e308\n[[algorithm]]\nname = \"gjk-johnson\"\n",
+       "late.toml:7: key 'family[0].radius': must be at most 1e+100"},
+      {head + family + "[[algorithm]]\nname = \"epa\"\nmax_faces = 1\n",
+       "late.toml:9: key 'algorithm[0].max_faces': must be in [4, 2^26]"},
+      {head + family +
+           "[[algorithm]]\nname = \"gjk-johnson\"\n[sweep]\nparameter = \"max_iterations\"\n"
+           "values = [4, 4]\n",
+       "late.toml:11: key 'sweep.values': value 4 appears twice"},
+  };
+  for (const Bad& b : bad) {
+    INFO(b.message);
+    const std::string experiment = dir.file("late.toml");
+    std::ofstream(experiment) << b.body;
+    const fs::path out = dir.file("late.h5");
+    const auto r = run_cli({"run", experiment, "--out", out.string()});
+    CHECK(r.status == 2);
+    CHECK(r.err.find(b.message) != std::string::npos);
+    CHECK_FALSE(fs::exists(out.string() + ".tmp"));
+  }
+}
