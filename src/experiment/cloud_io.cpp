@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::experiment {
@@ -91,6 +92,19 @@ std::vector<std::pair<int, std::string>> content_lines(std::istream& in) {
     if (!s.empty()) out.emplace_back(number, std::string(s));
   }
   return out;
+}
+
+/// The InputError of a mesh reader's message "FILE: problem" or "FILE:LINE: problem".
+InputError mesh_input_error(const std::string& file, std::string_view message) {
+  if (!message.starts_with(file + ":")) return InputError(file, 0, std::string(message));
+  message.remove_prefix(file.size() + 1);
+  int line = 0;
+  const auto [end, ec] = std::from_chars(message.data(), message.data() + message.size(), line);
+  if (ec == std::errc() && end != message.data() + message.size() && *end == ':')
+    message.remove_prefix(static_cast<std::size_t>(end - message.data()) + 1);
+  else
+    line = 0;
+  return InputError(file, line, std::string(trim(message)));
 }
 
 std::vector<Vec3> read_xyz(std::istream& in, const std::string& file) {
@@ -242,9 +256,17 @@ std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
     points = read_off(in, file);
   } else if (ext == ".obj") {
     points = read_obj(in, file);
+  } else if (ext == ".ply" || ext == ".stl") {
+    // Binary formats too (scanned objects come as PLY, CAD parts as STL): CGAL's readers,
+    // behind the header checks of mesh_io.
+    try {
+      points = exact::read_mesh_vertices(path);
+    } catch (const std::runtime_error& e) {
+      throw mesh_input_error(file, e.what());
+    }
   } else {
-    throw InputError(file, 0,
-                     "unknown point file extension '" + ext + "' (use .xyz, .off or .obj)");
+    throw InputError(
+        file, 0, "unknown point file extension '" + ext + "' (use .xyz, .off, .obj, .ply or .stl)");
   }
   if (points.empty()) throw InputError(file, 0, "empty point cloud");
   return points;

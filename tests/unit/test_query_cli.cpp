@@ -177,3 +177,29 @@ TEST_CASE("gjklab binary: query runs end to end with the documented exit codes",
   CHECK(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 1);
 }
+
+TEST_CASE("query reads PLY (ASCII and binary) and binary STL like the same shapes in .xyz/.off",
+          "[unit][query]") {
+  // Scanned objects come as PLY and CAD parts as STL: the same tetrahedron and box in four
+  // formats give the same exact answer.
+  const Run reference = run_cli({"query", data("tetra.xyz"), data("box_shifted.off"),
+                                 "--algorithms", "gjk-johnson,exact"});
+  REQUIRE(reference.status == 0);
+  for (const auto& [a, b] : {std::pair{"tetra_ascii.ply", "box_shifted_binary.ply"},
+                             std::pair{"tetra_binary.stl", "box_shifted_binary.ply"}}) {
+    INFO(a << " vs " << b);
+    const Run r = run_cli({"query", data(a), data(b), "--algorithms", "gjk-johnson,exact"});
+    REQUIRE(r.status == 0);
+    REQUIRE(r.lines.size() == 2);
+    for (int k = 0; k < 2; ++k) {
+      CHECK(r.lines[k]["distance"] == reference.lines[k]["distance"]);
+      CHECK(r.lines[k]["intersect"] == reference.lines[k]["intersect"]);
+    }
+    CHECK(r.lines[1]["distance2_num"] == "1");
+  }
+  const Run bad = run_cli({"query", std::string(GJKLAB_REGRESSION_DATA_DIR) +
+                                        "/hostile/ply_x_as_list.ply",
+                           data("tetra.xyz")});
+  CHECK(bad.status == 1);
+  CHECK(bad.err.find("ply_x_as_list.ply:4") != std::string::npos);
+}

@@ -52,7 +52,8 @@ struct CaseError {
 
 using CaseOrError = std::variant<PointCase, CaseError>;
 
-/// Reads the vertices of a .xyz (x y z per line), .off or .obj file. Throws InputError naming
+/// Reads the vertices of a .xyz (x y z per line), .off, .obj, .ply or .stl file (the last two
+/// ASCII or binary, with CGAL's readers). Throws InputError naming
 /// the file and line for a missing file, an unknown extension, a malformed line, a non-finite
 /// coordinate or an empty cloud.
 std::vector<Vec3> read_point_file(const std::filesystem::path& path);
