@@ -167,7 +167,7 @@ Outcome from_penetration(const PenetrationResult& r, bool deepest_points) {
 }
 
 Outcome run_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  thread_local EpaWorkspace workspace;  // buffers reused across queries on this thread
+  thread_local EpaPolytope workspace;  // buffers reused across queries on this thread
   const EpaResult r = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   Outcome out = from_penetration(r, true);
   out.iterations = r.gjk_iterations + r.iterations;  // GJK's, then EPA's
@@ -291,7 +291,7 @@ Outcome swept_trace_gjk_bool(const Polytope& a, const Polytope& b, const SweptRa
 /// that overlap by the difference).
 Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
                   const AlgorithmOptions& o) {
-  thread_local EpaWorkspace workspace;
+  thread_local EpaPolytope workspace;
   const EpaResult core = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   Outcome out = from_penetration(swept_penetration(core, r), true);
   out.iterations = core.gjk_iterations + core.iterations;
@@ -583,7 +583,7 @@ BenchTally bench_gjk_polyak(std::span<const BenchPair> pairs, const AlgorithmOpt
 }
 
 BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  EpaWorkspace workspace;  // reused across the batch's queries, as run_epa's per thread
+  EpaPolytope workspace;  // reused across the batch's queries, as run_epa's per thread
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
     return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   });

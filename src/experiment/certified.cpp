@@ -19,12 +19,12 @@ exact::DistanceHint distance_hint(const DistanceResult& gjk) {
 }
 
 /// EPA's final polytope: its vertices (every support point it took) and its live faces.
-exact::DepthHint depth_hint(const EpaWorkspace& ws) {
+exact::DepthHint depth_hint(const EpaPolytope& ws) {
   exact::DepthHint hint;
   hint.vertices.reserve(ws.vertices.size());
   for (const SimplexVertex& v : ws.vertices)
     hint.vertices.push_back(index_pair(v));
-  for (const EpaWorkspace::Face& f : ws.faces)
+  for (const EpaPolytope::Face& f : ws.faces)
     if (f.alive) hint.faces.push_back(f.v);
   return hint;
 }
@@ -41,7 +41,7 @@ CertifiedAnswer solve_certified(const Polytope& a, const Polytope& b, const Swep
     out.support_calls = gjk.support_calls;
     hints.distance = distance_hint(gjk);
     if (options.depth && gjk.intersect) {
-      thread_local EpaWorkspace workspace;  // buffers reused across queries on this thread
+      thread_local EpaPolytope workspace;  // buffers reused across queries on this thread
       const EpaResult epa = epa_from_gjk(a, b, gjk, EpaOptions{}, workspace);
       out.iterations += epa.iterations;
       out.support_calls = epa.support_calls;  // counts GJK's too

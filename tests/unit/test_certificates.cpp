@@ -46,13 +46,13 @@ DistanceHint gjk_hint(const Cloud& a, const Cloud& b) {
 
 DepthHint epa_hint(const Cloud& a, const Cloud& b) {
   const Polytope pa(a), pb(b);
-  EpaWorkspace ws;
+  EpaPolytope ws;
   const EpaResult r = epa_from_gjk(pa, pb, gjk_distance(pa, pb), EpaOptions{}, ws);
   DepthHint h;
   if (r.faces == 0) return h;
   for (const SimplexVertex& v : ws.vertices)
     h.vertices.push_back({v.index_a, v.index_b});
-  for (const EpaWorkspace::Face& f : ws.faces)
+  for (const EpaPolytope::Face& f : ws.faces)
     if (f.alive) h.faces.push_back(f.v);
   return h;
 }

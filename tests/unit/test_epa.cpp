@@ -185,7 +185,7 @@ TEST_CASE("epa: blows up GJK simplices of one to four points, flat ones included
   };
   for (const Start& start : starts) {
     INFO(start.name);
-    EpaWorkspace ws;
+    EpaPolytope ws;
     const EpaResult r = epa_from_gjk(a, b, start.gjk, EpaOptions{}, ws);
     CHECK(r.intersect);
     CHECK(r.termination == Termination::converged);
@@ -199,7 +199,7 @@ TEST_CASE("epa: depth agrees with the exact depth on 400 seeded random pairs", "
   // Tolerance: 1e-12 of the pair's size (the larger bounding-box diagonal).
   constexpr double kTolerance = 1e-12;
   Rng rng(20260301);
-  EpaWorkspace ws;
+  EpaPolytope ws;
   int intersecting = 0, shallow = 0, deep = 0, not_converged = 0;
   double worst = 0;
   int max_iterations = 0;
@@ -301,7 +301,7 @@ TEST_CASE("epa: iteration and face bounds stop with step_limit and a valid bound
     CHECK(r.depth <= expected * (1 + 1e-15));
   }
   SECTION("a reused workspace gives the same answer") {
-    EpaWorkspace ws;
+    EpaPolytope ws;
     EpaOptions small;
     small.max_faces = 8;
     small.max_iterations = 2;

@@ -16,9 +16,9 @@
 // Bounds and memory. The loop makes at most max_iterations support evaluations, and the
 // polytope never has more than max_faces faces. Each query reserves its buffers once, before
 // the loop (vertices: 4 + max_iterations; faces: max_faces; horizon: 3·max_faces edges), so
-// nothing in the loop allocates; pass an EpaWorkspace to reuse the buffers across queries.
-// A closed triangulated polytope with V vertices has 2V − 4 faces, so after k expansions it
-// has at most 4 + 2k faces: with max_faces ≥ 4 + 2·max_iterations the face buffer never binds.
+// nothing in the loop allocates; pass an EpaPolytope (epa_polytope.hpp) to reuse the buffers across
+// queries. A closed triangulated polytope with V vertices has 2V − 4 faces, so after k expansions
+// it has at most 4 + 2k faces: with max_faces ≥ 4 + 2·max_iterations the face buffer never binds.
 //
 // Termination. EPA's own stop reasons (EpaStop, kept in EpaResult::stop) map onto gjklab's
 // Termination as follows:
@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/epa_polytope.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
@@ -159,53 +160,6 @@ struct EpaResult : PenetrationResult {
   int faces = 0;  ///< faces of the final polytope (0 when EPA did not build one)
 };
 
-/// Buffers of one EPA query, reusable across queries (one per thread).
-class EpaWorkspace {
- public:
-  struct Face {
-    std::array<int, 3> v{};                 ///< vertex indices, counter-clockwise seen from outside
-    std::array<int, 3> adj{};               ///< adj[i]: the face across edge (v[i], v[i+1 mod 3])
-    std::array<std::int8_t, 3> adj_edge{};  ///< which edge of adj[i] is that edge
-    Vec3 normal = Vec3::Zero();             ///< outward unit normal
-    double distance = 0;                    ///< normal·v[0]: signed distance of the plane
-    int visible_stamp = -1;                 ///< step in which the face was found visible
-    bool alive = false;
-  };
-  struct HorizonEdge {
-    int from = 0, to = 0;  ///< vertex indices, in the orientation of the removed face
-    int outside_face = 0;  ///< the kept face across the edge
-    std::int8_t outside_edge = 0;
-    int next = -1, prev = -1;  ///< neighbouring horizon edges along the loop
-    int new_face = -1;
-    Vec3 normal = Vec3::Zero();
-    double distance = 0;
-  };
-
-  /// Empties the buffers and makes sure they hold a query with these options.
-  void prepare(const EpaOptions& options) {
-    const std::size_t max_vertices = 4 + static_cast<std::size_t>(options.max_iterations);
-    const std::size_t max_faces = static_cast<std::size_t>(options.max_faces);
-    vertices.clear();
-    vertices.reserve(max_vertices);
-    faces.clear();
-    faces.reserve(max_faces);
-    free_faces.clear();
-    free_faces.reserve(max_faces);
-    stack.clear();
-    stack.reserve(max_faces);
-    horizon.clear();
-    horizon.reserve(3 * max_faces);
-    edge_from.assign(max_vertices, -1);
-  }
-
-  std::vector<SimplexVertex> vertices;
-  std::vector<Face> faces;
-  std::vector<int> free_faces;
-  std::vector<int> stack;
-  std::vector<HorizonEdge> horizon;
-  std::vector<int> edge_from;  ///< per vertex: the horizon edge starting there, or −1
-};
-
 namespace detail {
 
 inline void validate(const EpaOptions& o) {
@@ -242,16 +196,161 @@ inline Vec3 any_orthogonal(const Vec3& e) {
 
 }  // namespace detail
 
+namespace detail {
+
+/// EPA's scale of rounding noise: R = max ‖w_i‖ over the support points seen, and lengths up to
+/// relative_noise·R are noise (see EpaOptions::relative_noise). R grows with every point taken.
+struct EpaScale {
+  double relative_noise = 0;
+  double radius = 0;
+  double noise() const { return relative_noise * radius; }
+  /// Takes a support point into the scale; false if it is not finite.
+  bool take(const SimplexVertex& s) {
+    if (!s.w.allFinite()) return false;
+    radius = std::max(radius, s.w.norm());
+    return true;
+  }
+};
+
+/// GJK's final simplex without repeated points, into p; returns their number.
+inline int distinct_simplex_points(const Simplex& simplex, std::array<SimplexVertex, 4>& p,
+                                   EpaScale& scale) {
+  int k = 0;
+  for (int i = 0; i < simplex.size(); ++i) {
+    const SimplexVertex& s = simplex[i];
+    bool seen = false;
+    for (int j = 0; j < k; ++j)
+      seen = seen || p[j].w == s.w;
+    if (seen) continue;
+    p[k++] = s;
+    scale.radius = std::max(scale.radius, s.w.norm());
+  }
+  return k;
+}
+
+/// Reduces a simplex holding the origin that is flat, collinear or coincident within the
+/// noise to fewer points that still hold it; returns their number.
+inline int drop_degenerate_points(std::array<SimplexVertex, 4>& p, int k, const EpaScale& scale) {
+  if (k == 4) {
+    const Vec3 e1 = p[1].w - p[0].w, e2 = p[2].w - p[0].w, e3 = p[3].w - p[0].w;
+    const double volume6 = e1.dot(e2.cross(e3));
+    static constexpr std::array<std::array<int, 3>, 4> kTriangles = {
+        {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
+    double largest_face = 0;
+    for (const auto& t : kTriangles)
+      largest_face =
+          std::max(largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
+    // The smallest height of the tetrahedron is |volume6| / largest_face.
+    if (!(std::abs(volume6) > scale.noise() * largest_face)) {
+      // Flat: the origin lies in the planar hull of the four points, so in one of the four
+      // triangles; keep the one that holds it best.
+      int best = 0;
+      double best_score = -std::numeric_limits<double>::infinity();
+      for (int t = 0; t < 4; ++t) {
+        std::array<double, 3> l;
+        const auto& tri = kTriangles[t];
+        if (!barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l)) continue;
+        const double score = std::min({l[0], l[1], l[2]});
+        if (score > best_score) {
+          best_score = score;
+          best = t;
+        }
+      }
+      const auto tri = kTriangles[best];
+      p = {p[tri[0]], p[tri[1]], p[tri[2]], SimplexVertex{}};
+      k = 3;
+    }
+  }
+  if (k == 3) {
+    const double twice_area = (p[1].w - p[0].w).cross(p[2].w - p[0].w).norm();
+    int longest = 0;  // edge (longest, longest + 1 mod 3)
+    double length = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double l = (p[(i + 1) % 3].w - p[i].w).norm();
+      if (l > length) {
+        length = l;
+        longest = i;
+      }
+    }
+    // Height on the longest edge within the noise: collinear; the longest edge covers the
+    // other point, hence the origin.
+    if (!(twice_area > scale.noise() * length)) {
+      p = {p[longest], p[(longest + 1) % 3], SimplexVertex{}, SimplexVertex{}};
+      k = 2;
+    }
+  }
+  if (k == 2 && !((p[1].w - p[0].w).norm() > scale.noise())) k = 1;
+  return k;
+}
+
+/// How growing the simplex into a tetrahedron ended.
+struct EpaSeed {
+  enum class Kind : std::uint8_t { tetrahedron, flat, non_finite } kind = Kind::tetrahedron;
+  Vec3 flat_normal = Vec3::UnitX();  ///< for `flat`: a normal of the flat A − B
+};
+
+/// Grows k = 1 … 4 points holding the origin into a tetrahedron inside A − B that holds it
+/// (possibly on its boundary), with support points off the current point, line or plane;
+/// reports A − B flat (a point, segment or planar set, within the noise) otherwise.
+template <class Support>
+EpaSeed grow_to_tetrahedron(std::array<SimplexVertex, 4>& p, int k, EpaScale& scale,
+                            Support&& support) {
+  using Kind = EpaSeed::Kind;
+  if (k == 1) {
+    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                                      Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+    for (const Vec3& d : axes) {
+      const SimplexVertex s = support(d);
+      if (!scale.take(s)) return {Kind::non_finite};
+      if ((s.w - p[0].w).norm() > scale.noise()) {
+        p[k++] = s;
+        break;
+      }
+    }
+    if (k == 1) return {Kind::flat, Vec3::UnitX()};  // A − B is a point
+  }
+  if (k == 2) {
+    const Vec3 e = p[1].w - p[0].w;
+    const Vec3 u = any_orthogonal(e);
+    const Vec3 v = e.cross(u).normalized();
+    const double e_norm = e.norm();
+    const std::array<Vec3, 4> directions = {u, -u, v, -v};
+    for (const Vec3& d : directions) {
+      const SimplexVertex s = support(d);
+      if (!scale.take(s)) return {Kind::non_finite};
+      if ((s.w - p[0].w).cross(e).norm() / e_norm > scale.noise()) {
+        p[k++] = s;
+        break;
+      }
+    }
+    if (k == 2) return {Kind::flat, u};  // A − B is a segment
+  }
+  if (k == 3) {
+    const Vec3 m = (p[1].w - p[0].w).cross(p[2].w - p[0].w).normalized();
+    const SimplexVertex above = support(m);
+    if (!scale.take(above)) return {Kind::non_finite};
+    const SimplexVertex below = support(-m);
+    if (!scale.take(below)) return {Kind::non_finite};
+    const double h_above = m.dot(above.w - p[0].w), h_below = -m.dot(below.w - p[0].w);
+    if (!(std::max(h_above, h_below) > scale.noise())) return {Kind::flat, m};  // A − B is flat
+    // One apex only: the tetrahedron is convex whatever the apexes' positions (a double
+    // pyramid need not be). The origin then lies on its base, which EPA expands first.
+    p[3] = h_above >= h_below ? above : below;
+  }
+  return {Kind::tetrahedron};
+}
+
+}  // namespace detail
+
 /// EPA on the pair after GJK: `gjk` must be gjk_distance's answer for the same pair (its
 /// final simplex starts the expansion). Separated pairs and GJK failures pass GJK's answer
-/// through (see EpaStop). Throws std::invalid_argument if the options are invalid.
+/// through (see EpaStop). Throws std::invalid_argument if the options are invalid. The parts:
+/// the GJK simplex reduced (drop_degenerate_points) and grown into a tetrahedron
+/// (grow_to_tetrahedron), then the loop below on the polytope (epa_polytope.hpp).
 template <SupportMap A, SupportMap B>
 EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const EpaOptions& options,
-                       EpaWorkspace& ws) {
+                       EpaPolytope& polytope) {
   detail::validate(options);
-  using Face = EpaWorkspace::Face;
-  using HorizonEdge = EpaWorkspace::HorizonEdge;
-
   EpaResult out;
   out.gjk_iterations = gjk.iterations;
   out.support_calls = gjk.support_calls;
@@ -280,332 +379,74 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
     out.termination = to_termination(stop);
     return out;
   };
-  // A − B has no interior (up to the noise level): depth 0 at GJK's contact point.
-  auto flat = [&](const Vec3& normal) -> EpaResult& {
-    out.depth = 0;
-    out.normal = normal;
-    return finish(EpaStop::flat_difference);
-  };
 
-  // ---- the GJK simplex, without duplicates ----
+  detail::EpaScale scale{options.relative_noise};
   std::array<SimplexVertex, 4> p;
-  int k = 0;
-  double radius = 0;  // R = max ‖w_i‖ over the points seen
-  for (int i = 0; i < gjk.simplex.size(); ++i) {
-    const SimplexVertex& s = gjk.simplex[i];
-    bool seen = false;
-    for (int j = 0; j < k; ++j)
-      seen = seen || p[j].w == s.w;
-    if (seen) continue;
-    p[k++] = s;
-    radius = std::max(radius, s.w.norm());
-  }
+  const int k = detail::distinct_simplex_points(gjk.simplex, p, scale);
   if (k == 0) return finish(EpaStop::degenerate_polytope);
-  auto noise = [&] { return options.relative_noise * radius; };
-  auto take = [&](const SimplexVertex& s) {
-    if (!s.w.allFinite()) return false;
-    radius = std::max(radius, s.w.norm());
-    return true;
-  };
-
-  // ---- reduce a flat tetrahedron / collinear triangle / coincident segment ----
-  if (k == 4) {
-    const Vec3 e1 = p[1].w - p[0].w, e2 = p[2].w - p[0].w, e3 = p[3].w - p[0].w;
-    const double volume6 = e1.dot(e2.cross(e3));
-    static constexpr std::array<std::array<int, 3>, 4> kTriangles = {
-        {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
-    double largest_face = 0;
-    for (const auto& t : kTriangles)
-      largest_face =
-          std::max(largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
-    // The smallest height of the tetrahedron is |volume6| / largest_face.
-    if (!(std::abs(volume6) > noise() * largest_face)) {
-      // Flat: the origin lies in the planar hull of the four points, so in one of the four
-      // triangles; keep the one that holds it best.
-      int best = 0;
-      double best_score = -std::numeric_limits<double>::infinity();
-      for (int t = 0; t < 4; ++t) {
-        std::array<double, 3> l;
-        const auto& tri = kTriangles[t];
-        if (!detail::barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l)) continue;
-        const double score = std::min({l[0], l[1], l[2]});
-        if (score > best_score) {
-          best_score = score;
-          best = t;
-        }
-      }
-      const auto tri = kTriangles[best];
-      p = {p[tri[0]], p[tri[1]], p[tri[2]], SimplexVertex{}};
-      k = 3;
-    }
+  const detail::EpaSeed seed =
+      detail::grow_to_tetrahedron(p, detail::drop_degenerate_points(p, k, scale), scale, support);
+  if (seed.kind == detail::EpaSeed::Kind::non_finite) return finish(EpaStop::non_finite);
+  if (seed.kind == detail::EpaSeed::Kind::flat) {
+    // A − B has no interior (up to the noise level): depth 0 at GJK's contact point.
+    out.depth = 0;
+    out.normal = seed.flat_normal;
+    return finish(EpaStop::flat_difference);
   }
-  if (k == 3) {
-    const double twice_area = (p[1].w - p[0].w).cross(p[2].w - p[0].w).norm();
-    int longest = 0;  // edge (longest, longest + 1 mod 3)
-    double length = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double l = (p[(i + 1) % 3].w - p[i].w).norm();
-      if (l > length) {
-        length = l;
-        longest = i;
-      }
-    }
-    // Height on the longest edge within the noise: collinear; the longest edge covers the
-    // other point, hence the origin.
-    if (!(twice_area > noise() * length)) {
-      p = {p[longest], p[(longest + 1) % 3], SimplexVertex{}, SimplexVertex{}};
-      k = 2;
-    }
-  }
-  if (k == 2 && !((p[1].w - p[0].w).norm() > noise())) k = 1;
+  polytope.prepare(options.max_iterations, options.max_faces);
+  if (!polytope.start_tetrahedron(p)) return finish(EpaStop::degenerate_polytope);
 
-  // ---- blow up to a tetrahedron holding the origin (possibly on its boundary) ----
-  if (k == 1) {
-    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
-                                      Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
-    for (const Vec3& d : axes) {
-      const SimplexVertex s = support(d);
-      if (!take(s)) return finish(EpaStop::non_finite);
-      if ((s.w - p[0].w).norm() > noise()) {
-        p[k++] = s;
-        break;
-      }
-    }
-    if (k == 1) return flat(Vec3::UnitX());  // A − B is a point
-  }
-  if (k == 2) {
-    const Vec3 e = p[1].w - p[0].w;
-    const Vec3 u = detail::any_orthogonal(e);
-    const Vec3 v = e.cross(u).normalized();
-    const double e_norm = e.norm();
-    const std::array<Vec3, 4> directions = {u, -u, v, -v};
-    for (const Vec3& d : directions) {
-      const SimplexVertex s = support(d);
-      if (!take(s)) return finish(EpaStop::non_finite);
-      if ((s.w - p[0].w).cross(e).norm() / e_norm > noise()) {
-        p[k++] = s;
-        break;
-      }
-    }
-    if (k == 2) return flat(u);  // A − B is a segment
-  }
-  if (k == 3) {
-    const Vec3 m = (p[1].w - p[0].w).cross(p[2].w - p[0].w).normalized();
-    const SimplexVertex above = support(m);
-    if (!take(above)) return finish(EpaStop::non_finite);
-    const SimplexVertex below = support(-m);
-    if (!take(below)) return finish(EpaStop::non_finite);
-    const double h_above = m.dot(above.w - p[0].w), h_below = -m.dot(below.w - p[0].w);
-    if (!(std::max(h_above, h_below) > noise())) return flat(m);  // A − B is flat
-    // One apex only: the tetrahedron is convex whatever the apexes' positions (a double
-    // pyramid need not be). The origin then lies on its base, which EPA expands first.
-    p[3] = h_above >= h_below ? above : below;
-    k = 4;
-  }
-
-  // ---- the initial tetrahedron ----
-  ws.prepare(options);
-  auto& vertices = ws.vertices;
-  auto& faces = ws.faces;
-  for (int i = 0; i < 4; ++i)
-    vertices.push_back(p[i]);
-
-  // Normal and plane distance of the triangle (i, j, l); false if it has no normal.
-  auto plane = [&](int i, int j, int l, Vec3& normal, double& distance) {
-    const Vec3& pi = vertices[i].w;
-    const Vec3 n = (vertices[j].w - pi).cross(vertices[l].w - pi);
-    const double len = n.norm();
-    if (!(len > 0) || !std::isfinite(len)) return false;
-    normal = n / len;
-    distance = normal.dot(pi);
-    return std::isfinite(distance);
-  };
-  auto allocate_face = [&]() -> int {
-    if (!ws.free_faces.empty()) {
-      const int f = ws.free_faces.back();
-      ws.free_faces.pop_back();
-      return f;
-    }
-    faces.emplace_back();  // within the reserved capacity (checked by the callers)
-    return static_cast<int>(faces.size()) - 1;
-  };
-  int alive = 0;
-
-  {
-    const Vec3 centroid = 0.25 * (p[0].w + p[1].w + p[2].w + p[3].w);
-    std::array<std::array<int, 3>, 4> tri = {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}};
-    for (auto& t : tri) {
-      const Vec3& p0 = vertices[t[0]].w;
-      const Vec3 n = (vertices[t[1]].w - p0).cross(vertices[t[2]].w - p0);
-      if (n.dot(centroid - p0) > 0) std::swap(t[1], t[2]);  // make the normal point outward
-    }
-    for (const auto& t : tri) {
-      const int f = allocate_face();
-      Face& face = faces[f];
-      face.v = t;
-      face.alive = true;
-      if (!plane(t[0], t[1], t[2], face.normal, face.distance))
-        return finish(EpaStop::degenerate_polytope);
-      ++alive;
-    }
-    // Adjacency: the face across edge (x, y) is the one holding the edge (y, x).
-    for (int f = 0; f < 4; ++f)
-      for (int e = 0; e < 3; ++e) {
-        const int x = faces[f].v[e], y = faces[f].v[(e + 1) % 3];
-        for (int g = 0; g < 4; ++g)
-          for (int h = 0; h < 3; ++h)
-            if (faces[g].v[h] == y && faces[g].v[(h + 1) % 3] == x) {
-              faces[f].adj[e] = g;
-              faces[f].adj_edge[e] = static_cast<std::int8_t>(h);
-            }
-      }
-  }
-
-  // ---- expansion ----
   int closest = 0;
+  // The answer: the closest face's depth, normal and witnesses.
   auto answer = [&](EpaStop stop) -> EpaResult& {
-    const Face& f = faces[closest];
+    const EpaPolytope::Face& f = polytope.faces[closest];
     out.depth = std::max(f.distance, 0.0);
     out.normal = f.normal;
     const Vec3 x = f.distance * f.normal;
     std::array<double, 3> l;
-    const SimplexVertex &v0 = vertices[f.v[0]], &v1 = vertices[f.v[1]], &v2 = vertices[f.v[2]];
+    const auto& v = polytope.vertices;
+    const SimplexVertex &v0 = v[f.v[0]], &v1 = v[f.v[1]], &v2 = v[f.v[2]];
     if (detail::barycentric(x, v0.w, v1.w, v2.w, l)) {
       out.witness_a = l[0] * v0.a + l[1] * v1.a + l[2] * v2.a;
       out.witness_b = l[0] * v0.b + l[1] * v1.b + l[2] * v2.b;
     }
-    out.faces = alive;
+    out.faces = polytope.alive();
     return finish(stop);
   };
 
   for (int step = 0;; ++step) {
-    closest = -1;
-    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-      if (faces[f].alive && (closest < 0 || faces[f].distance < faces[closest].distance))
-        closest = f;
-    const Vec3 n = faces[closest].normal;
-    const double lower = faces[closest].distance;
-
+    closest = polytope.closest_face();
+    const Vec3 n = polytope.faces[closest].normal;
+    const double lower = polytope.faces[closest].distance;
     if (out.iterations >= options.max_iterations) return answer(EpaStop::step_limit);
     ++out.iterations;
     const SimplexVertex w = support(n);
-    if (!take(w)) return answer(EpaStop::non_finite);
+    if (!scale.take(w)) return answer(EpaStop::non_finite);
     const double upper = n.dot(w.w);
     out.depth_upper_bound = std::min(out.depth_upper_bound, upper);
     const double gap = upper - lower;
-    if (gap <= options.relative_gap * lower || gap <= noise()) return answer(EpaStop::converged);
-    for (const SimplexVertex& v : vertices)
-      if (v.w == w.w) return answer(EpaStop::repeated_support);
-
-    // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise).
-    // A face whose plane holds w up to the noise level counts as seen: removing it keeps the
+    if (gap <= options.relative_gap * lower || gap <= scale.noise())
+      return answer(EpaStop::converged);
+    if (polytope.has_vertex(w.w)) return answer(EpaStop::repeated_support);
+    // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise). A
+    // face whose plane holds w up to the noise level counts as seen: removing it keeps the
     // polytope convex, drops vertices that are not extreme (support points of A − B on a face
     // of A − B, which ties produce), and never leaves w on the line of a horizon edge, which
     // would make a new face without area.
-    const double plane_slack = noise();
-    auto sees = [&](const Face& f) { return f.normal.dot(w.w) - f.distance >= -plane_slack; };
-    ws.stack.clear();
-    ws.horizon.clear();
-    ws.stack.push_back(closest);
-    faces[closest].visible_stamp = step;
-    int visible = 0;
-    while (!ws.stack.empty()) {
-      const int f = ws.stack.back();
-      ws.stack.pop_back();
-      ++visible;
-      for (int e = 0; e < 3; ++e) {
-        const int g = faces[f].adj[e];
-        if (faces[g].visible_stamp == step) continue;
-        if (sees(faces[g])) {
-          faces[g].visible_stamp = step;
-          ws.stack.push_back(g);
-        } else {
-          HorizonEdge h;
-          h.from = faces[f].v[e];
-          h.to = faces[f].v[(e + 1) % 3];
-          h.outside_face = g;
-          h.outside_edge = faces[f].adj_edge[e];
-          ws.horizon.push_back(h);
-        }
-      }
-    }
-    auto& horizon = ws.horizon;
-    const int h_count = static_cast<int>(horizon.size());
-    if (vertices.size() >= ws.edge_from.size() || alive - visible + h_count > options.max_faces)
-      return answer(EpaStop::out_of_faces);
-
+    const int visible = polytope.mark_visible(closest, w.w, scale.noise(), step);
+    if (!polytope.cone_fits(visible, options.max_faces)) return answer(EpaStop::out_of_faces);
     // The horizon must be one simple loop (a visible region that is a disc); otherwise
     // rounding has made the visibility inconsistent and the expansion would break the mesh.
-    bool simple = h_count >= 3;
-    for (int i = 0; i < h_count && simple; ++i) {
-      int& slot = ws.edge_from[horizon[i].from];
-      if (slot >= 0) simple = false;
-      slot = i;
-    }
-    if (simple) {
-      for (int i = 0; i < h_count && simple; ++i) {
-        const int next = ws.edge_from[horizon[i].to];
-        if (next < 0)
-          simple = false;
-        else {
-          horizon[i].next = next;
-          horizon[next].prev = i;
-        }
-      }
-      int length = 0;
-      for (int i = 0; simple && length <= h_count;) {
-        i = horizon[i].next;
-        ++length;
-        if (i == 0) break;
-      }
-      simple = simple && length == h_count;
-    }
-    for (const HorizonEdge& h : horizon)
-      ws.edge_from[h.from] = -1;
-    if (!simple) return answer(EpaStop::degenerate_polytope);
-
-    // New faces (from, to, w): check them all before changing the polytope.
-    const int wi = static_cast<int>(vertices.size());
-    vertices.push_back(w);
-    bool consistent = true;
-    for (HorizonEdge& h : horizon) {
-      consistent = consistent && plane(h.from, h.to, wi, h.normal, h.distance) &&
-                   h.distance >= lower - noise();
-    }
-    if (!consistent) {
-      vertices.pop_back();
+    if (!polytope.link_horizon()) return answer(EpaStop::degenerate_polytope);
+    if (!polytope.add_cone(w, step, lower, scale.noise()))
       return answer(EpaStop::degenerate_polytope);
-    }
-
-    // Remove the visible faces (they are exactly those stamped in this step) and add the cone.
-    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-      if (faces[f].alive && faces[f].visible_stamp == step) {
-        faces[f].alive = false;
-        ws.free_faces.push_back(f);
-      }
-    alive -= visible;
-    for (HorizonEdge& h : horizon)
-      h.new_face = allocate_face();
-    for (const HorizonEdge& h : horizon) {
-      Face& f = faces[h.new_face];
-      f.v = {h.from, h.to, wi};
-      f.normal = h.normal;
-      f.distance = h.distance;
-      f.alive = true;
-      f.visible_stamp = -1;
-      f.adj = {h.outside_face, horizon[h.next].new_face, horizon[h.prev].new_face};
-      f.adj_edge = {h.outside_edge, 2, 1};
-      faces[h.outside_face].adj[h.outside_edge] = h.new_face;
-      faces[h.outside_face].adj_edge[h.outside_edge] = 0;
-    }
-    alive += h_count;
   }
 }
 
 /// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect.
 template <SupportMap A, SupportMap B>
 EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
-                  const EpaOptions& options, EpaWorkspace& ws) {
+                  const EpaOptions& options, EpaPolytope& ws) {
   detail::validate(options);
   // Re-centred once for both phases (gjk_options.recenter, see recentred.hpp): EPA's support
   // values are compared at the scale of the pair too.
@@ -624,8 +465,8 @@ EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
 template <SupportMap A, SupportMap B>
 EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options = {},
                   const EpaOptions& options = {}) {
-  EpaWorkspace ws;
-  return gjk_epa(a, b, gjk_options, options, ws);
+  EpaPolytope polytope;
+  return gjk_epa(a, b, gjk_options, options, polytope);
 }
 
 }  // namespace gjklab
