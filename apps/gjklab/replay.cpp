@@ -41,19 +41,27 @@ experiment::CaseGeometry case_geometry(const experiment::Archive& archive, const
   return {std::move(g.a), std::move(g.b)};
 }
 
-void print_trace(std::ostream& out, const TraceRecorder& trace) {
+/// Prints a trace. The boolean walk's rows hold ‖d‖² and its separation test d·w (separated
+/// when < 0), and have no closest point, weights or lower bound; after a `cycled` row the
+/// distance walk's rows follow.
+void print_trace(std::ostream& out, const TraceRecorder& trace, bool boolean_walk) {
   for (const GjkIterationTrace& t : trace.iterations) {
-    out << "    it " << t.iteration << " " << to_string(t.step) << ": |v|^2 "
-        << fmt("%.17g", t.v_norm_squared) << ", v.w " << fmt("%.17g", t.v_dot_w) << ", lower bound "
-        << fmt("%.17g", t.lower_bound) << "\n";
+    out << "    it " << t.iteration << " " << to_string(t.step) << ": ";
+    if (boolean_walk)
+      out << "|d|^2 " << fmt("%.17g", t.v_norm_squared) << ", d.w " << fmt("%.17g", t.v_dot_w)
+          << (t.v_dot_w < 0 ? " < 0: separated" : "") << "\n";
+    else
+      out << "|v|^2 " << fmt("%.17g", t.v_norm_squared) << ", v.w " << fmt("%.17g", t.v_dot_w)
+          << ", lower bound " << fmt("%.17g", t.lower_bound) << "\n";
     out << "      direction " << vec(t.direction) << ", support w " << vec(t.support.w) << " (A["
         << t.support.index_a << "] - B[" << t.support.index_b << "])\n";
     out << "      simplex:";
     for (int i = 0; i < t.simplex.size(); ++i)
       out << " A[" << t.simplex[i].index_a << "]-B[" << t.simplex[i].index_b << "]"
           << (t.simplex[i].index_a < 0 ? " " + vec(t.simplex[i].w) : "")
-          << " λ=" << fmt("%.6g", t.weights[i]);
+          << (boolean_walk ? "" : " λ=" + fmt("%.6g", t.weights[i]));
     out << "\n";
+    if (t.step == GjkStep::cycled) boolean_walk = false;
   }
 }
 
@@ -154,7 +162,7 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
       if (now.distance) out << ", distance " << fmt("%.17g", *now.distance);
       out << ", " << now.iterations << " iterations, " << to_string(now.termination)
           << ", failure class " << to_string(then.failure) << "\n";
-      if (traced) print_trace(out, trace);
+      if (traced) print_trace(out, trace, info->kind == experiment::AnswerKind::boolean);
       if (args.trace && !traced) out << "    (no trace: " << name << " is not traceable)\n";
       const std::string d = differences(now, then);
       out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)

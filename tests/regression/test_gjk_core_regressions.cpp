@@ -163,7 +163,16 @@ TEST_CASE("gjk-bool on cube points 6 vs 59, 0.03 apart: a period-10 cycle is cau
   CHECK(r.termination == Termination::converged);
   CHECK(r.iterations < GjkBooleanDefaults::max_iterations);
   int cycled = 0;
-  for (const auto& row : trace.iterations)
+  const Vec3 centre = a.vertex_mean() - b.vertex_mean();
+  for (const auto& row : trace.iterations) {
     cycled += row.step == GjkStep::cycled;
+    if (cycled) break;  // the distance walk's rows follow
+    // The boolean rows say what the walk used: d·w and ‖d‖², and the simplex points' vertices
+    // (only the centre start, c = c_A − c_B, has none).
+    CHECK(row.v_dot_w == row.support.w.dot(row.direction));
+    CHECK(row.v_norm_squared == row.direction.squaredNorm());
+    for (const SimplexVertex& v : row.simplex.vertices())
+      CHECK((v.index_a >= 0 || v.w == centre));
+  }
   CHECK(cycled == 1);
 }

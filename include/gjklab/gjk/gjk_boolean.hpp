@@ -21,6 +21,8 @@
 // decision (GjkStep::cycled in the trace, then the distance walk's rows).
 #pragma once
 
+#include <array>
+
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/options.hpp"
@@ -41,6 +43,31 @@ struct BooleanSimplex {
 /// The iteration from which the walk watches for a cycle (queries that end sooner, nearly all,
 /// skip the bookkeeping).
 inline constexpr int kCycleWatchStart = 12;
+
+/// The last few support points of a traced walk, to give its simplex points (kept as points
+/// of A − B only) their vertices in A and B; a point not found (the centre start) is returned
+/// without indices.
+class RecentSupports {
+ public:
+  void add(const SimplexVertex& v) {
+    supports_[next_] = v;
+    next_ = (next_ + 1) % kSize;
+    count_ = count_ < kSize ? count_ + 1 : kSize;
+  }
+  SimplexVertex find(const Vec3& w) const {
+    for (int i = 0; i < count_; ++i)
+      if (supports_[i].w == w) return supports_[i];
+    SimplexVertex unknown;
+    unknown.w = w;
+    return unknown;
+  }
+
+ private:
+  static constexpr int kSize = 8;  // a simplex holds at most the last four support points
+  std::array<SimplexVertex, kSize> supports_{};
+  int next_ = 0;
+  int count_ = 0;
+};
 
 /// Brent's cycle detection on the walk's states (search direction and simplex, bit for bit).
 /// The walk is deterministic, so a state that comes back means a cycle that would repeat until
@@ -113,14 +140,22 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
   const bool from_centre =
       options.start != GjkBooleanStart::fixed_direction && detail::centre_difference(a, b, centre);
 
+  // Traced only: the last support points with their vertex indices, so that each simplex
+  // point of a trace row shows the A and B vertices it came from (the walk keeps points only).
+  detail::RecentSupports recent_supports;
+  // A trace row: the search direction d, the support point w, the separation test's d·w (in
+  // v_dot_w; separated when < 0) and ‖d‖² (in v_norm_squared), and the simplex after the step.
   auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
     if constexpr (Observer::enabled) {
+      recent_supports.add(w);
       GjkIterationTrace t;
       t.iteration = out.iterations;
       t.direction = d;
       t.support = w;
+      t.v_norm_squared = d.squaredNorm();
+      t.v_dot_w = w.w.dot(d);
       for (int i = 0; i < simplex.size; ++i)
-        t.simplex.push({simplex.points[i]});
+        t.simplex.push(recent_supports.find(simplex.points[i]));
       t.step = step;
       observer.on_iteration(t);
     }
