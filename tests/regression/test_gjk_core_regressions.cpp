@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
@@ -16,13 +17,6 @@
 using namespace gjklab;
 
 namespace {
-
-experiment::PointCase load_case(const char* file) {
-  const auto cases =
-      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
-  REQUIRE(cases.size() == 1);
-  return std::get<experiment::PointCase>(cases[0]);
-}
 
 constexpr const char* kDistanceVariants[] = {"gjk-johnson", "gjk-johnson-backup", "gjk-sv",
                                              "gjk-voronoi", "gjk-nesterov",       "gjk-polyak",
@@ -53,7 +47,7 @@ TEST_CASE("parallel ridges 1.2e-8 rad apart, overlapping by 1.2e-9: stalled step
   // brings is a relative 1e-17, below double resolution. Every variant stopped with
   // no_progress at distance 7.8e-9: a wrong boolean. The driver now takes such steps as
   // bounded stalls (the gap is certified, the simplex changes) and reaches the contact.
-  const auto c = load_case("parallel_ridges_1p2e-8_rad_overlapping_1p2e-9.jsonl");
+  const auto c = testing::regression_case("parallel_ridges_1p2e-8_rad_overlapping_1p2e-9.jsonl");
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE(exact.intersect);
   check_every_variant(c, exact);
@@ -73,7 +67,7 @@ TEST_CASE("parallel ridges separated by 6.9e-9: the distance to 1e-10 of the siz
           "[regression]") {
   // The same family separated (case 3733): the variants stopped with no_progress at
   // 1.27e-8 instead of 6.9e-9, an error of 1.9e-9 × size.
-  const auto c = load_case("parallel_ridges_separated_6p9e-9.jsonl");
+  const auto c = testing::regression_case("parallel_ridges_separated_6p9e-9.jsonl");
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE_FALSE(exact.intersect);
   check_every_variant(c, exact);
@@ -84,7 +78,7 @@ TEST_CASE("boxes 1e8 from the origin, 0.18 apart: exact re-centring", "[regressi
   // values d·x are rounded at 1e8, where one ulp is 1.5e-8, so vertices of nearly parallel
   // faces are confused and the answers were off by 1.8e-9 × size. Re-centred exactly, every
   // variant is exact to rounding; without it (recenter = false) the naive error is back.
-  const auto c = load_case("boxes_offset_1e8_separated_0p18.jsonl");
+  const auto c = testing::regression_case("boxes_offset_1e8_separated_0p18.jsonl");
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE_FALSE(exact.intersect);
   check_every_variant(c, exact);
@@ -113,7 +107,7 @@ TEST_CASE("rotated boxes face to face, 4.1e-11 apart: a flat tetrahedron is not 
   // while the origin is 4.1e-11 off that plane; Johnson's rounded weights were all positive
   // and gjk-johnson claimed contact (error 5.8e-11 × size). The driver now checks that the
   // origin is not provably outside the tetrahedron before it accepts contact.
-  const auto c = load_case("kissing_boxes_rotated_4p1e-11_apart.jsonl");
+  const auto c = testing::regression_case("kissing_boxes_rotated_4p1e-11_apart.jsonl");
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE_FALSE(exact.intersect);
   REQUIRE(exact.distance > 4e-11);
@@ -153,7 +147,7 @@ TEST_CASE("gjk-bool on cube points 6 vs 59, 0.03 apart: a period-10 cycle is cau
   // Quickstart seed 1, case 7786: the triple-product walk came back to the same ten states
   // over and over and ran into its 64-step limit; the ring of its last six states could not
   // see a period of 10. Brent's detection catches it, and the distance walk decides.
-  const auto c = load_case("gjk_bool_cycle_period_10_cube_points_6_vs_59.jsonl");
+  const auto c = testing::regression_case("gjk_bool_cycle_period_10_cube_points_6_vs_59.jsonl");
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE_FALSE(exact.intersect);
   const Polytope a(c.a), b(c.b);

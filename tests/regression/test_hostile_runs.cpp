@@ -7,8 +7,8 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "../support/cli_run.hpp"
 #include "gjklab/experiment/archive.hpp"

@@ -1,6 +1,7 @@
 // Configurations that broke gjk-johnson, kept with their data.
 #include <catch2/catch.hpp>
 
+#include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
@@ -8,17 +9,6 @@
 #include "gjklab/gjk/gjk_distance.hpp"
 
 using namespace gjklab;
-
-namespace {
-
-experiment::PointCase load_case(const char* file) {
-  const auto cases =
-      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
-  REQUIRE(cases.size() == 1);
-  return std::get<experiment::PointCase>(cases[0]);
-}
-
-}  // namespace
 
 TEST_CASE("johnson flat tetrahedron near contact: 102 sphere points vs 9, gap 0.0135",
           "[regression]") {
@@ -28,7 +18,7 @@ TEST_CASE("johnson flat tetrahedron near contact: 102 sphere points vs 9, gap 0.
   // support point had already proved separation (v·w > 0). The driver now continues from the
   // flat tetrahedron's nearest face, which does not improve ‖v‖: a no-progress stop with the
   // right answer.
-  const auto c = load_case("johnson_flat_tetrahedron_near_contact.jsonl");
+  const auto c = testing::regression_case("johnson_flat_tetrahedron_near_contact.jsonl");
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);
@@ -49,7 +39,8 @@ TEST_CASE("contact pair separated by 5.6e-14: tetrahedron holds the origin only 
   // support point proves separation; at iteration 4 every GJK distance variant's sub-algorithm
   // accepted a tetrahedron around the origin, and the driver stopped with the previous bound
   // 0.316 (relative error 0.1). Continuing from the nearest face gives the exact distance.
-  const auto c = load_case("contact_eps_5e-14_flat_tetrahedron_after_separation.jsonl");
+  const auto c =
+      testing::regression_case("contact_eps_5e-14_flat_tetrahedron_after_separation.jsonl");
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
@@ -13,14 +14,6 @@
 using namespace gjklab;
 
 namespace {
-
-experiment::PointCase load_case(const std::string& file) {
-  const auto cases =
-      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
-  REQUIRE(cases.size() == 1);
-  REQUIRE(std::holds_alternative<experiment::PointCase>(cases[0]));
-  return std::get<experiment::PointCase>(cases[0]);
-}
 
 /// Every algorithm on the case: finite answers; gjklab's own agree with the exact answer.
 exact::OracleAnswer check_every_algorithm(const experiment::PointCase& c) {
@@ -51,14 +44,16 @@ exact::OracleAnswer check_every_algorithm(const experiment::PointCase& c) {
 }  // namespace
 
 TEST_CASE("cubes of side 2 centred 1.9 apart along z: depth 0.1, no NaN", "[regression]") {
-  const auto exact = check_every_algorithm(load_case("cubes_side2_offset_1p9_along_z.jsonl"));
+  const auto exact =
+      check_every_algorithm(testing::regression_case("cubes_side2_offset_1p9_along_z.jsonl"));
   CHECK(exact.intersect);
   REQUIRE(exact.depth.has_value());
   CHECK(*exact.depth == Approx(0.1).epsilon(1e-12));
 }
 
 TEST_CASE("flat polygons at z = 0 intersect (a library reported distance 0.509)", "[regression]") {
-  const auto exact = check_every_algorithm(load_case("flat_polygons_z0_intersecting.jsonl"));
+  const auto exact =
+      check_every_algorithm(testing::regression_case("flat_polygons_z0_intersecting.jsonl"));
   CHECK(exact.intersect);
   CHECK(exact.hull_vertices_a == 4);
   CHECK(exact.hull_vertices_b == 3);
@@ -66,13 +61,15 @@ TEST_CASE("flat polygons at z = 0 intersect (a library reported distance 0.509)"
 
 TEST_CASE("thin plate vs rotated small box: no NaN witness from a collinear simplex",
           "[regression]") {
-  const auto exact = check_every_algorithm(load_case("thin_plate_vs_rotated_small_box.jsonl"));
+  const auto exact =
+      check_every_algorithm(testing::regression_case("thin_plate_vs_rotated_small_box.jsonl"));
   CHECK_FALSE(exact.intersect);
   CHECK(exact.distance == Approx(0.0535161628).epsilon(1e-9));
 }
 
 TEST_CASE("point vs degenerate triangle with a repeated vertex: distance 0.17148", "[regression]") {
-  const auto exact = check_every_algorithm(load_case("point_vs_degenerate_triangle.jsonl"));
+  const auto exact =
+      check_every_algorithm(testing::regression_case("point_vs_degenerate_triangle.jsonl"));
   CHECK_FALSE(exact.intersect);
   CHECK(exact.distance == Approx(0.17148).epsilon(1e-4));
 }

@@ -5,18 +5,9 @@
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
+#include "../support/regression_case.hpp"
+
 using namespace gjklab;
-
-namespace {
-
-experiment::PointCase load(const char* file) {
-  const auto cases =
-      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/" + file);
-  REQUIRE(cases.size() == 1);
-  return std::get<experiment::PointCase>(cases[0]);
-}
-
-}  // namespace
 
 TEST_CASE("two spheres overlapping by 0.5% of the size: gjk-bool's centre start",
           "[regression][swept]") {
@@ -24,7 +15,8 @@ TEST_CASE("two spheres overlapping by 0.5% of the size: gjk-bool's centre start"
   // lies on the ray from c through the origin, so the origin is on the segment up to rounding.
   // The triple product then gave a direction of pure noise (1e-19), and the walk cycled
   // through the same four states until its step limit, answering "not intersecting".
-  const experiment::PointCase c = load("spheres_overlapping_0p5pct_of_size.jsonl");
+  const experiment::PointCase c =
+      testing::regression_case("spheres_overlapping_0p5pct_of_size.jsonl");
   const Polytope a(c.a), b(c.b);
   const SweptRadii radii{c.radius_a, c.radius_b};
   const auto exact = exact::solve_swept(c.a, c.b, radii.a, radii.b, {.depth = true});
@@ -40,7 +32,7 @@ TEST_CASE("two spheres overlapping by 0.5% of the size: gjk-bool's centre start"
 TEST_CASE("two spheres 1.2e-8 apart: gjk-bool on the swept support", "[regression][swept]") {
   // With the fixed first direction the walk crawled along the ball's surface and ran out of
   // its 64 steps (75 were needed); the centre start proves the separation with one support.
-  const experiment::PointCase c = load("spheres_1p2e-8_apart.jsonl");
+  const experiment::PointCase c = testing::regression_case("spheres_1p2e-8_apart.jsonl");
   const Polytope a(c.a), b(c.b);
   const SweptRadii radii{c.radius_a, c.radius_b};
   const auto exact = exact::solve_swept(c.a, c.b, radii.a, radii.b);

@@ -5,6 +5,8 @@
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
+#include "../support/regression_case.hpp"
+
 using namespace gjklab;
 
 TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 points)",
@@ -12,15 +14,13 @@ TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 
   // See test_johnson_regressions.cpp: a support point coplanar with the closest triangle
   // makes a flat tetrahedron whose rounded cofactors all look positive. No variant may claim
   // contact after a separation certificate, and all must return the distance.
-  const auto cases = experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) +
-                                                 "/johnson_flat_tetrahedron_near_contact.jsonl");
-  REQUIRE(cases.size() == 1);
-  const auto& c = std::get<experiment::PointCase>(cases[0]);
+  const experiment::PointCase c =
+      testing::regression_case("johnson_flat_tetrahedron_near_contact.jsonl");
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(a.vertices(), b.vertices());
   REQUIRE_FALSE(exact.intersect);
-  for (const char* name :
-       {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi", "gjk-nesterov"}) {
+  for (const char* name : {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi",
+                           "gjk-nesterov", "gjk-polyak"}) {
     INFO(name);
     const auto o = experiment::find_algorithm(name)->run(a, b, {});
     CHECK_FALSE(o.intersect);
