@@ -1,8 +1,10 @@
 #include "gjklab/query.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <istream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -92,6 +94,63 @@ std::vector<std::string> answer_case(const PointCase& c,
   return lines;
 }
 
+/// A JSON value as a table cell: numbers with 12 significant digits (the JSON lines keep all
+/// 17), booleans as yes/no, vectors in brackets, absent as "-".
+std::string cell(const Json& j) {
+  if (j.is_null()) return "-";
+  if (j.is_boolean()) return j.get<bool>() ? "yes" : "no";
+  if (j.is_number_float()) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.12g", j.get<double>());
+    return buffer;
+  }
+  if (j.is_array()) {
+    std::string out = "[";
+    for (std::size_t k = 0; k < j.size(); ++k)
+      out += (k ? " " : "") + cell(j[k]);
+    return out + "]";
+  }
+  if (j.is_string()) return j.get<std::string>();
+  return j.dump();
+}
+
+/// The answers as an aligned table, one row per answer line, for people at a terminal: the
+/// columns every answer has, then the distance, depth and exact fields that some have.
+void write_table(std::ostream& out, const std::vector<std::string>& lines) {
+  static const std::vector<std::string> kColumns = {"id",          "algorithm", "intersect",
+                                                    "distance",    "depth",     "iterations",
+                                                    "termination", "method",    "error"};
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> used(kColumns.size(), false);
+  for (const std::string& line : lines) {
+    const Json j = Json::parse(line);
+    std::vector<std::string> row;
+    for (std::size_t c = 0; c < kColumns.size(); ++c) {
+      const auto found = j.find(kColumns[c]);
+      row.push_back(found == j.end() ? "-" : cell(*found));
+      used[c] = used[c] || found != j.end();
+    }
+    rows.push_back(std::move(row));
+  }
+  std::vector<std::size_t> width(kColumns.size(), 0);
+  for (std::size_t c = 0; c < kColumns.size(); ++c) {
+    width[c] = kColumns[c].size();
+    for (const auto& row : rows)
+      width[c] = std::max(width[c], row[c].size());
+  }
+  auto write_row = [&](const std::vector<std::string>& row) {
+    std::string text;
+    for (std::size_t c = 0; c < kColumns.size(); ++c)
+      if (used[c]) text += row[c] + std::string(width[c] - row[c].size() + 2, ' ');
+    while (!text.empty() && text.back() == ' ')
+      text.pop_back();
+    out << text << "\n";
+  };
+  write_row(kColumns);
+  for (const auto& row : rows)
+    write_row(row);
+}
+
 /// Cases from the two point files or the cases file; file-level problems become CaseErrors.
 std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std::string& source) {
   if (args.cases.empty()) {
@@ -126,7 +185,8 @@ std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std
 CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "query", "answer one pair (two point files) or every case of a JSON-lines file");
-  cmd->add_option("files", args.files, "point files A and B (.xyz, .off or .obj)")->expected(0, 2);
+  cmd->add_option("files", args.files, "point files A and B (.xyz, .off, .obj, .ply or .stl)")
+      ->expected(0, 2);
   cmd->add_option("--cases", args.cases,
                   "JSON-lines cases file, one {\"id\", \"a\", \"b\"} per line ('-' for stdin)");
   cmd->add_option(
@@ -142,6 +202,9 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
                   "sweep A's hull by a ball of this radius (sphere, capsule, rounded polytope); "
                   "a cases file gives radius_a per line")
       ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
+  cmd->add_option("--format", args.format,
+                  "json (default: one JSON line per answer) or table (aligned, for a terminal)")
+      ->check(CLI::IsMember({"json", "table"}));
   cmd->add_option("--radius-b", args.radius_b, "sweep B's hull by a ball of this radius")
       ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
   return cmd;
@@ -201,16 +264,22 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
     t.join();
 
   int status = 0;
+  std::vector<std::string> output;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     if (const auto* e = std::get_if<CaseError>(&cases[i])) {
       err << "gjklab query: " << source;
       if (e->line > 0) err << ":" << e->line;
       err << ": case '" << e->id << "': " << e->problem << "\n";
-      out << error_line(e->id, e->problem) << "\n";
+      output.push_back(error_line(e->id, e->problem));
       status = 1;
       continue;
     }
-    for (const std::string& line : lines[i])
+    output.insert(output.end(), lines[i].begin(), lines[i].end());
+  }
+  if (args.format == "table") {
+    write_table(out, output);
+  } else {
+    for (const std::string& line : output)
       out << line << "\n";
   }
   out.flush();

@@ -21,6 +21,7 @@ struct QueryArgs {
   /// Sphere-swept shapes for the two point files (a cases file gives radii per line).
   double radius_a = 0;
   double radius_b = 0;
+  std::string format = "json";  ///< "json" (a line per answer) or "table" (for a terminal)
 };
 
 /// Registers the `query` subcommand and its options on app.

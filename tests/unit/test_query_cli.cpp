@@ -182,8 +182,8 @@ TEST_CASE("query reads PLY (ASCII and binary) and binary STL like the same shape
           "[unit][query]") {
   // Scanned objects come as PLY and CAD parts as STL: the same tetrahedron and box in four
   // formats give the same exact answer.
-  const Run reference = run_cli({"query", data("tetra.xyz"), data("box_shifted.off"),
-                                 "--algorithms", "gjk-johnson,exact"});
+  const Run reference = run_cli(
+      {"query", data("tetra.xyz"), data("box_shifted.off"), "--algorithms", "gjk-johnson,exact"});
   REQUIRE(reference.status == 0);
   for (const auto& [a, b] : {std::pair{"tetra_ascii.ply", "box_shifted_binary.ply"},
                              std::pair{"tetra_binary.stl", "box_shifted_binary.ply"}}) {
@@ -197,9 +197,33 @@ TEST_CASE("query reads PLY (ASCII and binary) and binary STL like the same shape
     }
     CHECK(r.lines[1]["distance2_num"] == "1");
   }
-  const Run bad = run_cli({"query", std::string(GJKLAB_REGRESSION_DATA_DIR) +
-                                        "/hostile/ply_x_as_list.ply",
-                           data("tetra.xyz")});
+  const Run bad =
+      run_cli({"query", std::string(GJKLAB_REGRESSION_DATA_DIR) + "/hostile/ply_x_as_list.ply",
+               data("tetra.xyz")});
   CHECK(bad.status == 1);
   CHECK(bad.err.find("ply_x_as_list.ply:4") != std::string::npos);
+}
+
+TEST_CASE("query --format table: a header and one aligned row per answer", "[unit][query]") {
+  std::vector<const char*> argv{"gjklab",  "query", "--format",     "table",
+                                "--cases", "-",     "--algorithms", "gjk-johnson,gjk-bool"};
+  const std::string input =
+      "{\"id\": \"apart\", \"a\": [[0,0,0],[1,0,0],[0,1,0]], \"b\": [[0,0,2],[1,1,2]]}\n"
+      "{\"id\": \"broken\", \"a\": []}\n";
+  std::istringstream in(input);
+  std::ostringstream out, err;
+  const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
+  CHECK(status == 1);  // the broken line
+  std::istringstream text(out.str());
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(text, line);)
+    rows.push_back(line);
+  REQUIRE(rows.size() == 4);  // header, two answers, the error
+  CHECK(rows[0].rfind("id", 0) == 0);
+  const auto column = rows[0].find("algorithm");
+  REQUIRE(column != std::string::npos);
+  CHECK(rows[1].substr(column, 11) == "gjk-johnson");
+  CHECK(rows[2].substr(column, 8) == "gjk-bool");
+  CHECK(rows[1].find(" 2 ") != std::string::npos);  // the distance
+  CHECK(rows[3].find("empty point cloud") != std::string::npos);
 }
