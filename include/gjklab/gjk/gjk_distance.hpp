@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -403,6 +404,90 @@ Vec3 start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
 /// stall), the momentum dropped (restart), or the query stops with no_progress.
 enum class StepOutcome : std::uint8_t { progressed, stalled, restart, stop };
 
+/// The quantities of one iteration that the step needs: ‖v‖², v·s and ‖s‖² for the support
+/// point s, and whether separation is proven.
+struct StepInputs {
+  double vv, vw, ww;
+  bool separation_proven;
+};
+
+/// What a step did: the trace step to record, and the stop when the query ends there.
+struct StepVerdict {
+  GjkStep step;
+  std::optional<DistanceStop> stop;
+};
+
+/// Solves the simplex plus the support point `next` with the sub-algorithm and takes the step
+/// (contact, progress, a bounded stall), drops the momentum, or stops; the simplex changes only
+/// once the answer is accepted.
+template <class Sub, class Observer>
+StepVerdict solve_step(const Sub& sub, DistanceQueryState<Observer>& q, const SimplexVertex& next,
+                       const StepInputs& in, bool& accelerated, int& stalls) {
+  Simplex& simplex = q.simplex();
+  ClosestOnSimplex& best = q.best;
+  std::array<Vec3, 4> y = simplex.points();
+  y[simplex.size()] = next.w;
+  const auto s = sub.solve(y, simplex.size() + 1);
+  if (!s.found) return {GjkStep::degenerate, DistanceStop{Termination::degenerate_simplex, false}};
+  if (!is_finite(s.closest))
+    return {GjkStep::non_finite, DistanceStop{Termination::numerical_failure, false}};
+  const bool full = s.subset == 0xF;
+  // A full simplex is contact unless its tetrahedron provably misses the origin: flat within
+  // rounding, with the origin off its plane (kissing faces), where the sub-algorithm's
+  // weights are rounding noise. Then the query goes on from the nearest face, as after a
+  // separation certificate.
+  const bool contact = full ? !origin_outside_tetrahedron(y)
+                            : q.in_contact(s.closest, max_norm_squared(y, s.subset));
+  if (!in.separation_proven && contact) {
+    apply_solution(s, next, simplex, best);
+    return {GjkStep::contact, DistanceStop{Termination::converged, true}};
+  }
+  // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
+  // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
+  // an accelerated query drops its momentum instead.
+  auto judge = [&](double new_vv, bool keeps_next) {
+    if (new_vv < in.vv) return StepOutcome::progressed;
+    if (accelerated) return StepOutcome::restart;
+    if (may_stall(in.vv, in.vw, in.ww, new_vv, keeps_next, stalls)) return StepOutcome::stalled;
+    return StepOutcome::stop;
+  };
+  const auto taken = [](StepOutcome o) {
+    return o == StepOutcome::progressed || o == StepOutcome::stalled;
+  };
+  StepOutcome outcome;
+  if (full) {
+    // Contact is ruled out (by the separation certificate or the tetrahedron test): the
+    // closest point lies on one of the faces.
+    Simplex reduced = simplex;
+    reduced.push(next);
+    ClosestOnSimplex candidate;
+    if (!detail::reduce_to_closest_face(sub, reduced, candidate))
+      return {GjkStep::degenerate, DistanceStop{Termination::degenerate_simplex, false}};
+    outcome = judge(candidate.v.squaredNorm(), reduced.contains(next.w));
+    if (taken(outcome)) {
+      simplex = reduced;
+      best = candidate;
+    }
+  } else {
+    outcome = judge(s.closest.squaredNorm(), (s.subset >> simplex.size()) & 1u);
+    if (taken(outcome)) apply_solution(s, next, simplex, best);
+  }
+  switch (outcome) {
+    case StepOutcome::restart:
+      accelerated = false;
+      return {GjkStep::momentum_restart, std::nullopt};
+    case StepOutcome::stop:
+      return {GjkStep::no_progress, DistanceStop{Termination::no_progress, false}};
+    case StepOutcome::stalled:
+      ++stalls;
+      return {GjkStep::stalled, std::nullopt};
+    case StepOutcome::progressed:
+      break;
+  }
+  stalls = 0;
+  return {GjkStep::continued, std::nullopt};
+}
+
 /// The GJK distance loop of every variant: the search direction comes from `directions` (see
 /// directions.hpp), everything else is shared: the cold or warm start, the stopping tests, the
 /// separation certificate, the sub-algorithm's step, stalls and the momentum restart.
@@ -489,75 +574,13 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
     if (!accelerated && !separation_proven && separation_certified(vw, vv, ww))
       separation_proven = true;
 
-    // Solve the simplex plus s first and change the simplex only once the answer is accepted.
-    std::array<Vec3, 4> y = simplex.points();
-    y[simplex.size()] = next.w;
-    const auto s = sub.solve(y, simplex.size() + 1);
-    if (!s.found) {
-      trace(next, vw, GjkStep::degenerate);
-      return {Termination::degenerate_simplex, false};
-    }
-    if (!is_finite(s.closest)) {
-      trace(next, vw, GjkStep::non_finite);
-      return {Termination::numerical_failure, false};
-    }
-    const bool full = s.subset == 0xF;
-    // A full simplex is contact unless its tetrahedron provably misses the origin: flat within
-    // rounding, with the origin off its plane (kissing faces), where the sub-algorithm's
-    // weights are rounding noise. Then the query goes on from the nearest face, as after a
-    // separation certificate.
-    const bool contact = full ? !origin_outside_tetrahedron(y)
-                              : q.in_contact(s.closest, max_norm_squared(y, s.subset));
-    if (!separation_proven && contact) {
-      apply_solution(s, next, simplex, best);
-      trace(next, vw, GjkStep::contact);
-      return {Termination::converged, true};
-    }
-    // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
-    // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
-    // an accelerated query drops its momentum instead.
-    auto judge = [&](double new_vv, bool keeps_next) {
-      if (new_vv < vv) return StepOutcome::progressed;
-      if (accelerated) return StepOutcome::restart;
-      if (may_stall(vv, vw, ww, new_vv, keeps_next, stalls)) return StepOutcome::stalled;
-      return StepOutcome::stop;
-    };
-    StepOutcome outcome;
-    if (full) {
-      // Contact is ruled out (by the separation certificate or the tetrahedron test): the
-      // closest point lies on one of the faces.
-      Simplex reduced = simplex;
-      reduced.push(next);
-      ClosestOnSimplex candidate;
-      if (!detail::reduce_to_closest_face(sub, reduced, candidate)) {
-        trace(next, vw, GjkStep::degenerate);
-        return {Termination::degenerate_simplex, false};
-      }
-      outcome = judge(candidate.v.squaredNorm(), reduced.contains(next.w));
-      if (outcome == StepOutcome::progressed || outcome == StepOutcome::stalled) {
-        simplex = reduced;
-        best = candidate;
-      }
-    } else {
-      outcome = judge(s.closest.squaredNorm(), (s.subset >> simplex.size()) & 1u);
-      if (outcome == StepOutcome::progressed || outcome == StepOutcome::stalled)
-        apply_solution(s, next, simplex, best);
-    }
-    if (outcome == StepOutcome::restart) {
-      accelerated = false;
-      trace(next, vw, GjkStep::momentum_restart);
-      continue;
-    }
-    if (outcome == StepOutcome::stop) {
-      trace(next, vw, GjkStep::no_progress);
-      return {Termination::no_progress, false};
-    }
-    const bool progressed = outcome == StepOutcome::progressed;
-    stalls = progressed ? 0 : stalls + 1;
+    const StepVerdict verdict =
+        solve_step(sub, q, next, StepInputs{vv, vw, ww, separation_proven}, accelerated, stalls);
+    const bool last = out.iterations == options.max_iterations;
     trace(next, vw,
-          out.iterations == options.max_iterations ? GjkStep::step_limit
-          : progressed                             ? GjkStep::continued
-                                                   : GjkStep::stalled);
+          verdict.stop || verdict.step == GjkStep::momentum_restart || !last ? verdict.step
+                                                                             : GjkStep::step_limit);
+    if (verdict.stop) return *verdict.stop;
   }
   out.iterations = options.max_iterations;
   return {Termination::step_limit, false};
