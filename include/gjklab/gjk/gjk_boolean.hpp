@@ -69,6 +69,53 @@ class RecentSupports {
   int count_ = 0;
 };
 
+/// Puts the newest point at the front of the simplex (a fall-through switch rather than a loop
+/// with a data-dependent trip count: the same moves, without the loop's mispredictions).
+inline void push_front(BooleanSimplex& simplex, const Vec3& w) {
+  switch (simplex.size) {
+    case 3:
+      simplex.points[3] = simplex.points[2];
+      [[fallthrough]];
+    case 2:
+      simplex.points[2] = simplex.points[1];
+      [[fallthrough]];
+    default:
+      simplex.points[1] = simplex.points[0];
+  }
+  simplex.points[0] = w;
+  ++simplex.size;
+}
+
+/// The boolean walk's trace rows: the search direction d, the support point w, the separation
+/// test's d·w (in v_dot_w; separated when < 0) and ‖d‖² (in v_norm_squared), and the simplex
+/// after the step with each point's vertices in A and B, found among the recent support points
+/// (the walk keeps points only). No work when the observer is disabled.
+template <class Observer>
+class BooleanTrace {
+ public:
+  explicit BooleanTrace(Observer& observer) : observer_(observer) {}
+  void row(int iteration, const Vec3& d, const SimplexVertex& w, const BooleanSimplex& simplex,
+           GjkStep step) {
+    if constexpr (Observer::enabled) {
+      recent_.add(w);
+      GjkIterationTrace t;
+      t.iteration = iteration;
+      t.direction = d;
+      t.support = w;
+      t.v_norm_squared = d.squaredNorm();
+      t.v_dot_w = w.w.dot(d);
+      for (int i = 0; i < simplex.size; ++i)
+        t.simplex.push(recent_.find(simplex.points[i]));
+      t.step = step;
+      observer_.on_iteration(t);
+    }
+  }
+
+ private:
+  Observer& observer_;
+  RecentSupports recent_;
+};
+
 /// Brent's cycle detection on the walk's states (search direction and simplex, bit for bit).
 /// The walk is deterministic, so a state that comes back means a cycle that would repeat until
 /// the step limit. One state is kept, replaced whenever the count since it reaches the next
@@ -140,25 +187,9 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
   const bool from_centre =
       options.start != GjkBooleanStart::fixed_direction && detail::centre_difference(a, b, centre);
 
-  // Traced only: the last support points with their vertex indices, so that each simplex
-  // point of a trace row shows the A and B vertices it came from (the walk keeps points only).
-  detail::RecentSupports recent_supports;
-  // A trace row: the search direction d, the support point w, the separation test's d·w (in
-  // v_dot_w; separated when < 0) and ‖d‖² (in v_norm_squared), and the simplex after the step.
+  detail::BooleanTrace<Observer> tracer{observer};
   auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
-    if constexpr (Observer::enabled) {
-      recent_supports.add(w);
-      GjkIterationTrace t;
-      t.iteration = out.iterations;
-      t.direction = d;
-      t.support = w;
-      t.v_norm_squared = d.squaredNorm();
-      t.v_dot_w = w.w.dot(d);
-      for (int i = 0; i < simplex.size; ++i)
-        t.simplex.push(recent_supports.find(simplex.points[i]));
-      t.step = step;
-      observer.on_iteration(t);
-    }
+    tracer.row(out.iterations, d, w, simplex, step);
   };
   auto finish = [&](bool intersect, Termination t) {
     out.intersect = intersect;
@@ -217,20 +248,7 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
       trace(d, w, GjkStep::separated);
       return finish(false, Termination::converged);
     }
-    // Make room for the newest point at the front (a fall-through switch rather than a loop
-    // with a data-dependent trip count: the same moves, without the loop's mispredictions).
-    switch (simplex.size) {
-      case 3:
-        simplex.points[3] = simplex.points[2];
-        [[fallthrough]];
-      case 2:
-        simplex.points[2] = simplex.points[1];
-        [[fallthrough]];
-      default:
-        simplex.points[1] = simplex.points[0];
-    }
-    simplex.points[0] = w.w;
-    ++simplex.size;
+    detail::push_front(simplex, w.w);
     if (detail::boolean_gjk_step(simplex, direction)) {
       trace(d, w, GjkStep::contact);
       return finish(true, Termination::converged);
