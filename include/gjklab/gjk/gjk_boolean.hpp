@@ -22,6 +22,7 @@
 #pragma once
 
 #include <array>
+#include <type_traits>
 
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -112,8 +113,11 @@ class BooleanTrace {
   }
 
  private:
+  struct Nothing {};
   Observer& observer_;
-  RecentSupports recent_;
+  // Only a traced walk keeps the recent support points: an untraced query (the hot path)
+  // neither builds nor clears them.
+  [[no_unique_address]] std::conditional_t<Observer::enabled, RecentSupports, Nothing> recent_;
 };
 
 /// Brent's cycle detection on the walk's states (search direction and simplex, bit for bit).
