@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -163,7 +165,6 @@ Vec3 json_point(const nlohmann::json& p, const char* cloud, std::size_t index) {
   for (int k = 0; k < 3; ++k) {
     if (!p[k].is_number()) throw std::invalid_argument(where + ": coordinate is not a number");
     v[k] = p[k].get<double>();
-    if (!std::isfinite(v[k])) throw std::invalid_argument(where + ": non-finite coordinate");
   }
   return v;
 }
@@ -173,12 +174,11 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
   const auto& arr = j.at(cloud);
   if (!arr.is_array())
     throw std::invalid_argument(std::string("cloud ") + cloud + ": expected an array of points");
-  if (arr.empty())
-    throw std::invalid_argument(std::string("cloud ") + cloud + ": empty point cloud");
   std::vector<Vec3> out;
   out.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i)
     out.push_back(json_point(arr[i], cloud, i));
+  check_case_cloud(out, cloud);
   return out;
 }
 
@@ -186,9 +186,10 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
 double json_radius(const nlohmann::json& j, const char* key) {
   if (!j.contains(key)) return 0;
   const auto& v = j.at(key);
-  if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() >= 0))
+  if (!v.is_number())
     throw std::invalid_argument(std::string(key) + ": expected a finite number >= 0, got " +
                                 json_line(v));
+  check_case_radius(v.get<double>(), key);
   return v.get<double>();
 }
 
@@ -270,6 +271,23 @@ std::vector<Vec3> read_point_file(const std::filesystem::path& path) {
   }
   if (points.empty()) throw InputError(file, 0, "empty point cloud");
   return points;
+}
+
+void check_case_cloud(std::span<const Vec3> cloud, const char* name) {
+  const std::string where = std::string("cloud ") + name;
+  if (cloud.empty()) throw std::invalid_argument(where + ": empty point cloud");
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (!cloud[i].allFinite())
+      throw std::invalid_argument(where + " point " + std::to_string(i) +
+                                  ": non-finite coordinate");
+}
+
+void check_case_radius(double radius, const char* key) {
+  if (!std::isfinite(radius) || !(radius >= 0)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", radius);
+    throw std::invalid_argument(std::string(key) + ": expected a finite number >= 0, got " + text);
+  }
 }
 
 CaseOrError parse_case_line(std::string_view text, int line) {

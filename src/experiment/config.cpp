@@ -3,6 +3,8 @@
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/real_objects.hpp"
 
 #include <toml++/toml.h>
 
@@ -54,7 +56,8 @@ constexpr double kMaxScale = 1e100;
 
 constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random",
                                                 "touching"};
-/// Shapes a family can name directly ("contact" and "file" are handled apart).
+/// Generated shapes a family can name directly (contact, file, mesh and real_object are read
+/// apart; family_shapes() lists them all).
 constexpr ShapeKind kShapeKinds[] = {
     ShapeKind::sphere_points,
     ShapeKind::ball_points,
@@ -72,7 +75,6 @@ constexpr ShapeKind kShapeKinds[] = {
     ShapeKind::sphere,
     ShapeKind::capsule,
 };
-constexpr std::string_view kPairShapes[] = {"contact", "file", "mesh"};
 constexpr ContactType kContactTypes[] = {
     ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
     ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
@@ -92,10 +94,8 @@ std::string join(const Range& items) {
 
 std::string shape_names() {
   std::vector<std::string_view> names;
-  for (ShapeKind k : kShapeKinds)
-    names.push_back(to_string(k));
-  for (std::string_view pair : kPairShapes)
-    names.push_back(pair);
+  for (const FamilyShapeInfo& shape : family_shapes())
+    names.push_back(shape.name);
   return join(names);
 }
 
@@ -513,6 +513,34 @@ void read_meshes(const Section& s, const std::string& experiment_file, FamilySpe
   f.shape_a = f.shape_b = ShapeKind::mesh;
 }
 
+/// `objects = ["elephant", …]` or `"all"` of a real_object family: each object's hull, read
+/// now, so that an unknown name or a missing package is a config error.
+void read_real_objects(const Section& s, FamilySpec& f) {
+  const toml::node* node = s.find("objects");
+  if (!node)
+    s.missing("objects", "missing (shape = \"real_object\" needs \"all\" or a list of names)");
+  const bool all = node->is_string() && node->as_string()->get() == "all";
+  const toml::array* names = node->as_array();
+  if (!all && (!names || names->empty()))
+    s.fail(*node, "objects", "expected \"all\" or a non-empty array of object names");
+  if (names) {
+    for (const toml::node& entry : *names) {
+      if (!entry.is_string()) s.fail(entry, "objects", "expected object names (strings)");
+      f.objects.push_back(entry.as_string()->get());
+    }
+  }
+  try {
+    if (all) f.objects = real_object_names();
+    for (const std::string& name : f.objects)
+      f.meshes.push_back(real_object(name));
+  } catch (const std::runtime_error& e) {
+    // RealObjectError (no package, unknown name: the message lists the valid names), or a
+    // mesh of the package that cannot be read (the message names the file).
+    s.fail(*node, "objects", e.what());
+  }
+  f.shape_a = f.shape_b = ShapeKind::mesh;
+}
+
 Rotation read_rotation(const Section& s) {
   const toml::node* node = s.find("rotate");
   if (!node) return Rotation::random;
@@ -555,7 +583,7 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                        const std::string& experiment_file) {
   s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
                 "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
-                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b"});
+                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects"});
   FamilySpec f;
   const bool has_shape = s.find("shape") != nullptr;
   const auto pair_shape = has_shape && s.find("shape")->is_string()
@@ -564,6 +592,9 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   const bool is_contact = pair_shape == "contact";
   const bool is_file = pair_shape == "file";
   const bool is_mesh = pair_shape == "mesh";
+  const bool is_real_object = pair_shape == "real_object";
+  if (!is_real_object && s.find("objects"))
+    s.fail(*s.find("objects"), "objects", "applies only to shape = \"real_object\"");
   for (std::string_view key : {"contact", "angle"})
     if (!is_contact && s.find(key))
       s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
@@ -578,6 +609,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     read_stored_pairs(s, experiment_file, f);
   } else if (is_mesh) {
     read_meshes(s, experiment_file, f);
+  } else if (is_real_object) {
+    read_real_objects(s, f);
   } else if (has_shape) {
     f.shape_a = f.shape_b = read_shape(s, "shape");
   } else if (s.find("shape_a") || s.find("shape_b")) {
@@ -631,6 +664,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     f.name = "file:" + f.path;
   } else if (is_mesh) {
     f.name = "mesh:" + f.path;
+  } else if (is_real_object) {
+    f.name = s.find("objects")->is_string() ? "real_object:all" : "real_object";
   } else if (f.shape_a == f.shape_b) {
     f.name = std::string(to_string(f.shape_a));
   } else {

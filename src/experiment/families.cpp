@@ -527,6 +527,34 @@ void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
 
 }  // namespace
 
+std::span<const FamilyShapeInfo> family_shapes() {
+  static constexpr FamilyShapeInfo kShapes[] = {
+      {"sphere_points", "points uniform on the unit sphere"},
+      {"ball_points", "points uniform in the unit ball"},
+      {"cube_points", "points uniform in the cube [-1, 1]^3"},
+      {"gaussian", "standard normal cloud"},
+      {"box", "demo box (8 vertices)"},
+      {"cone", "demo cone (apex and a ring)"},
+      {"cylinder", "demo cylinder (two rings)"},
+      {"uv_sphere", "demo UV sphere"},
+      {"flat_points", "points uniform in the unit disk of the plane z = 0 (exactly coplanar)"},
+      {"collinear_points", "points uniform on the segment [-1, 1] of the x axis"},
+      {"duplicate_points", "n points drawn from three distinct points on the unit sphere"},
+      {"single_point", "one point at the origin"},
+      {"sliver", "box of extents 1 x 1 x 1/aspect"},
+      {"sphere", "sphere-swept point (a ball of the family's radius)"},
+      {"capsule", "sphere-swept segment (+-1, 0, 0)"},
+      {"contact",
+       "pairs built in exact contact (face-face, edge-edge, ...), then moved by epsilon"},
+      {"file", "the pairs of a JSON-lines cases file (path)"},
+      {"mesh", "the vertices of mesh files (path: one .off/.obj/.ply/.stl file or a folder)"},
+      {"real_object",
+       "convex hulls of the real meshes of Debian's libcgal-demo (objects: names or \"all\"), "
+       "at unit size"},
+  };
+  return kShapes;
+}
+
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
   if (config.families.empty())
     throw std::invalid_argument("generate_case: the experiment has no families");

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -61,6 +62,15 @@ std::vector<Vec3> read_point_file(const std::filesystem::path& path);
 /// Parses one JSON line into a case; problems are returned as a CaseError (never thrown).
 /// `line` is used for the default id ("line N") and in errors.
 CaseOrError parse_case_line(std::string_view text, int line);
+
+/// Checks one cloud of a case the way a cases line is checked (`name` is "a" or "b"): throws
+/// std::invalid_argument with the message `gjklab query --cases` reports, e.g.
+/// "cloud a: empty point cloud" or "cloud b point 3: non-finite coordinate".
+void check_case_cloud(std::span<const Vec3> cloud, const char* name);
+
+/// Checks a case's "radius_a" or "radius_b" (finite, >= 0); throws std::invalid_argument
+/// "radius_a: expected a finite number >= 0, got -1".
+void check_case_radius(double radius, const char* key);
 
 /// Reads every non-blank line of a cases file. Throws InputError if the file cannot be opened.
 std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path);

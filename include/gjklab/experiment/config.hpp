@@ -94,6 +94,9 @@ struct FamilySpec {
   /// The `mesh` family's meshes (vertices of each file under `path`, in name order); each
   /// shape of a case is one of them, drawn uniformly, then rotated, scaled and placed.
   std::vector<std::vector<Vec3>> meshes;
+  /// The `real_object` family's object names, in the order of `meshes` (its meshes are the
+  /// objects' convex hulls at unit size, see real_objects.hpp).
+  std::vector<std::string> objects;
 };
 
 /// One algorithm to run, with its options.

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "gjklab/experiment/config.hpp"
@@ -27,6 +29,16 @@ std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id);
 /// shapes, rotations, scale and placement), from a GSL generator seeded by
 /// case_stream_seed(seed, case_id) alone: the same case whatever else was generated before.
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id);
+
+/// A shape a [[family]] can name (`shape = "NAME"`), with what it makes.
+struct FamilyShapeInfo {
+  std::string_view name;
+  std::string_view description;
+};
+
+/// Every shape a family can name, generated clouds first, then the pair shapes (contact,
+/// file, mesh, real_object); the experiment parser accepts exactly these.
+std::span<const FamilyShapeInfo> family_shapes();
 
 /// Points of one generator (before rotation, scale and placement); `n` (>= 1) is the requested
 /// vertex count. The point generators give exactly n points; the demo shapes adjust it: box has

@@ -1,0 +1,546 @@
+// gjklab._gjklab: the compiled half of the Python module.
+//
+// Every call goes to the public C++ API that the command line uses: the algorithm registry and
+// its option schema (experiment/algorithms.hpp, algorithm_options.hpp), the case checks of
+// `gjklab query --cases` (cloud_io.hpp), the experiment parser and driver of `gjklab run`
+// (config.hpp, driver.hpp) and the family list (families.hpp). What lives here is only the
+// translation between Python values and those calls, so an algorithm or option added to the
+// registry appears in Python without a change to this file.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <future>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "gjklab/experiment/algorithm_options.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/real_objects.hpp"
+#include "gjklab/experiment/summary.hpp"
+
+namespace py = pybind11;
+
+namespace gjklab::python {
+
+namespace {
+
+using experiment::AlgorithmInfo;
+using experiment::AlgorithmSpec;
+using experiment::Outcome;
+
+// ---- Python values in --------------------------------------------------------------------
+
+/// "(4,)", "(2, 5)": an array's shape for messages.
+std::string shape_text(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t k = 0; k < array.ndim(); ++k)
+    text += (k ? ", " : "") + std::to_string(array.shape(k));
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+/// A cloud from an n×3 float64 NumPy array (any strides, so slices and transposes work) or
+/// from anything numpy.asarray turns into float64 numbers (nested lists). Other dtypes are
+/// refused rather than converted: a float32 or integer array is usually a mistake upstream, and
+/// GJK's answers depend on every bit of the input. Then the checks of `gjklab query --cases`.
+std::vector<Vec3> cloud_from(const py::handle& object, const char* name) {
+  py::array array;
+  if (py::isinstance<py::array>(object)) {
+    array = py::reinterpret_borrow<py::array>(object);
+    if (!array.dtype().equal(py::dtype::of<double>()))
+      throw py::value_error(
+          std::string("cloud ") + name + ": expected float64 coordinates, got dtype " +
+          py::str(array.dtype()).cast<std::string>() + " (convert with .astype(numpy.float64))");
+  } else {
+    array = py::array_t<double, py::array::forcecast>::ensure(object);
+    if (!array) {
+      PyErr_Clear();
+      throw py::value_error(std::string("cloud ") + name +
+                            ": expected an n×3 array of float64 coordinates, got " +
+                            py::str(py::type::of(object)).cast<std::string>());
+    }
+  }
+  // No points at all ([] reads as shape (0,)) is an empty cloud, as in a cases line.
+  if (array.size() == 0) experiment::check_case_cloud({}, name);
+  if (array.ndim() != 2 || array.shape(1) != 3)
+    throw py::value_error(std::string("cloud ") + name + ": expected an n×3 array, got shape " +
+                          shape_text(array));
+  const auto typed = py::reinterpret_borrow<py::array_t<double>>(array);
+  const auto view = typed.unchecked<2>();
+  std::vector<Vec3> cloud(static_cast<std::size_t>(view.shape(0)));
+  for (py::ssize_t i = 0; i < view.shape(0); ++i)
+    cloud[static_cast<std::size_t>(i)] = Vec3(view(i, 0), view(i, 1), view(i, 2));
+  experiment::check_case_cloud(cloud, name);
+  return cloud;
+}
+
+/// The text an experiment file would give for an option's value: a number, [x, y, z], a
+/// boolean or a string (config.cpp's option_text), so that set_option checks it the same way.
+std::string option_text(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  const bool is_array = py::isinstance<py::array>(value);
+  const bool vector = is_array ? py::reinterpret_borrow<py::array>(value).ndim() > 0
+                               : py::isinstance<py::sequence>(value);
+  if (!vector && py::hasattr(value, "__float__"))  // int, float, NumPy scalars
+    return experiment::round_trip(value.cast<double>());
+  if (vector) {
+    std::string text;
+    for (const py::handle item : value) {
+      if (py::isinstance<py::str>(item) || !py::hasattr(item, "__float__"))
+        throw py::value_error("option '" + key + "': expected numbers in the list");
+      text += (text.empty() ? "" : " ") + experiment::round_trip(item.cast<double>());
+    }
+    return text;
+  }
+  throw py::value_error("option '" + key + "': expected a number, a boolean, a string or " +
+                        "[x, y, z], got " + py::str(py::type::of(value)).cast<std::string>());
+}
+
+const AlgorithmInfo& algorithm_named(const std::string& name) {
+  const AlgorithmInfo* info = experiment::find_algorithm(name);
+  if (!info)
+    throw py::value_error("unknown algorithm '" + name +
+                          "'; valid names: " + experiment::algorithm_names());
+  return *info;
+}
+
+/// "a, b, c" of an algorithm's option keys, for messages.
+std::string option_key_list(const std::string& algorithm) {
+  std::string text;
+  for (std::string_view key : experiment::option_keys(algorithm))
+    text += (text.empty() ? "" : ", ") + std::string(key);
+  return text.empty() ? "none" : text;
+}
+
+/// The algorithm's options: its defaults with each keyword set through the registry's schema.
+AlgorithmSpec spec_from(const std::string& algorithm, const py::kwargs& options) {
+  AlgorithmSpec spec;
+  spec.name = spec.label = algorithm;
+  for (const auto& [key_object, value] : options) {
+    const std::string key = key_object.cast<std::string>();
+    const std::string text = option_text(key, value);
+    try {
+      experiment::set_option(spec, key, text);
+    } catch (const std::invalid_argument& e) {
+      std::string message = algorithm + ": option '" + key + "': " + e.what();
+      if (std::string(e.what()).find("does not apply") != std::string::npos)
+        message = std::string(e.what()) + "; valid: " + option_key_list(algorithm);
+      throw py::value_error(message);
+    }
+  }
+  return spec;
+}
+
+// ---- answers out ---------------------------------------------------------------------------
+
+py::object vector_or_none(const std::optional<Vec3>& v) {
+  if (!v) return py::none();
+  py::array_t<double> out(3);
+  auto w = out.mutable_unchecked<1>();
+  for (int k = 0; k < 3; ++k)
+    w(k) = (*v)[k];
+  return out;
+}
+
+py::object fraction(const exact::Rational& r) {
+  static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
+  // Decimal strings of any length: Python's int parses them exactly.
+  return Fraction(py::int_(py::str(r.numerator)), py::int_(py::str(r.denominator)));
+}
+
+/// One algorithm's answer, with the JSON names of `gjklab query`.
+struct QueryResult {
+  std::string algorithm;
+  double radius_a = 0, radius_b = 0;
+  Outcome outcome;
+};
+
+/// The exact oracle's answer, with the JSON names of `gjklab query --algorithms exact`.
+struct ExactResult {
+  exact::OracleAnswer answer;
+};
+
+/// The CLI's JSON object of one answer (query.cpp's answer_line), as a dict.
+py::dict query_dict(const QueryResult& r) {
+  py::dict d;
+  d["algorithm"] = r.algorithm;
+  if (r.radius_a != 0 || r.radius_b != 0) {
+    d["radius_a"] = r.radius_a;
+    d["radius_b"] = r.radius_b;
+  }
+  const Outcome& o = r.outcome;
+  d["intersect"] = o.intersect;
+  if (o.distance) d["distance"] = *o.distance;
+  if (o.depth) d["depth"] = *o.depth;
+  if (o.normal) d["normal"] = vector_or_none(o.normal);
+  if (o.witness_a && o.witness_b) {
+    d["witness_a"] = vector_or_none(o.witness_a);
+    d["witness_b"] = vector_or_none(o.witness_b);
+  }
+  d["iterations"] = o.iterations;
+  d["support_calls"] = o.support_calls;
+  d["termination"] = std::string(to_string(o.termination));
+  return d;
+}
+
+// ---- the calls -----------------------------------------------------------------------------
+
+/// A shape built once for many queries. Building a shape from an array (checking, copying,
+/// and the Polytope's bounding box and SIMD blocks) costs about as much as one GJK query on
+/// it; a study that queries the same shapes in many poses or with many algorithms builds them
+/// once.
+struct Shape {
+  std::shared_ptr<const Polytope> polytope;
+};
+
+/// One side of a query: a Shape's polytope, or the points of an array, turned into a
+/// polytope later (with the GIL released).
+struct QueryInput {
+  std::shared_ptr<const Polytope> shape;
+  std::vector<Vec3> points;
+
+  const Polytope& polytope(std::optional<Polytope>& storage) {
+    if (shape) return *shape;
+    return storage.emplace(std::move(points));
+  }
+};
+
+QueryInput input_from(const py::handle& object, const char* name) {
+  if (py::isinstance<Shape>(object)) return {object.cast<const Shape&>().polytope, {}};
+  return {nullptr, cloud_from(object, name)};
+}
+
+Outcome run_one(const AlgorithmInfo& info, QueryInput a, QueryInput b, double radius_a,
+                double radius_b, const experiment::AlgorithmOptions& options) {
+  experiment::check_case_radius(radius_a, "radius_a");
+  experiment::check_case_radius(radius_b, "radius_b");
+  const py::gil_scoped_release release;
+  std::optional<Polytope> storage_a, storage_b;
+  return experiment::run_algorithm(info, a.polytope(storage_a), b.polytope(storage_b),
+                                   SweptRadii{radius_a, radius_b}, options);
+}
+
+QueryResult query(const py::handle& a, const py::handle& b, const std::string& algorithm,
+                  double radius_a, double radius_b, const py::kwargs& options) {
+  const AlgorithmInfo& info = algorithm_named(algorithm);
+  const AlgorithmSpec spec = spec_from(algorithm, options);
+  QueryResult r{algorithm, radius_a, radius_b, {}};
+  r.outcome =
+      run_one(info, input_from(a, "a"), input_from(b, "b"), radius_a, radius_b, spec.options);
+  return r;
+}
+
+ExactResult exact_answer(const py::handle& a, const py::handle& b, bool depth, double radius_a,
+                         double radius_b) {
+  const AlgorithmInfo& info = algorithm_named("exact");
+  experiment::AlgorithmOptions options;
+  options.oracle.depth = depth;  // as `gjklab query --depth`
+  Outcome o = run_one(info, input_from(a, "a"), input_from(b, "b"), radius_a, radius_b, options);
+  return {*o.exact};
+}
+
+/// An option's default as Python would write it, from the schema's text: true/false as bool,
+/// "128" as int, "1e-12" as float, "1 0 0" as a list, any other word (a criterion) as str.
+py::object typed_default(const std::string& text) {
+  if (text == "true" || text == "false") return py::bool_(text == "true");
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string word; in >> word;)
+    words.push_back(word);
+  py::list numbers;
+  for (const std::string& word : words) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(word, &used);
+    } catch (const std::exception&) {
+      return py::str(text);
+    }
+    if (used != word.size()) return py::str(text);
+    const bool integral = word.find_first_of(".eEn") == std::string::npos;
+    numbers.append(integral ? py::object(py::int_(std::stoll(word)))
+                            : py::object(py::float_(value)));
+  }
+  if (numbers.size() == 1) return numbers[0];
+  return numbers;
+}
+
+/// algorithms(): name → {kind, description, peer, depth, swept, options: {key: default}}.
+py::dict algorithms() {
+  py::dict out;
+  for (const AlgorithmInfo& info : experiment::algorithms()) {
+    AlgorithmSpec spec;
+    spec.name = spec.label = std::string(info.name);
+    py::dict options;
+    for (const auto& [key, text] : experiment::describe_options(spec))
+      options[py::str(key)] = typed_default(text);
+    py::dict entry;
+    entry["kind"] = info.kind == experiment::AnswerKind::boolean    ? "boolean"
+                    : info.kind == experiment::AnswerKind::distance ? "distance"
+                                                                    : "exact";
+    entry["description"] = std::string(info.description);
+    entry["peer"] = info.peer;
+    entry["depth"] = info.depth;
+    entry["swept"] = info.run_swept != nullptr;
+    entry["options"] = options;
+    out[py::str(std::string(info.name))] = entry;
+  }
+  return out;
+}
+
+py::list families() {
+  py::list out;
+  for (const experiment::FamilyShapeInfo& shape : experiment::family_shapes()) {
+    py::dict entry;
+    entry["shape"] = std::string(shape.name);
+    entry["description"] = std::string(shape.description);
+    out.append(entry);
+  }
+  return out;
+}
+
+/// An experiment from a file name, or from TOML text (anything with a newline or '=' that
+/// names no file); relative paths inside text are relative to the working directory.
+experiment::ExperimentConfig load(const std::string& path_or_text) {
+  std::error_code ec;
+  const bool looks_like_text = path_or_text.find_first_of("\n=") != std::string::npos;
+  if (!looks_like_text || std::filesystem::is_regular_file(path_or_text, ec))
+    return experiment::load_experiment(path_or_text);
+  return experiment::parse_experiment(path_or_text, "<experiment text>");
+}
+
+/// What gjklab.run returns: where the archive is, how much ran, and the summary `gjklab run`
+/// prints.
+struct RunResult {
+  std::string output;
+  std::uint64_t cases = 0;
+  double seconds = 0;
+  bool complete = false;
+  std::string summary;
+};
+
+RunResult run(const std::string& experiment_path_or_text, std::optional<std::string> out,
+              std::optional<int> threads, std::optional<std::uint64_t> cases, bool force,
+              bool progress) {
+  const experiment::ExperimentConfig config = load(experiment_path_or_text);
+  std::atomic<bool> stop{false};
+  experiment::RunOptions options;
+  options.output = out;
+  options.threads = threads;
+  options.cases = cases;
+  options.force = force;
+  options.progress = progress ? &std::cerr : nullptr;
+  options.stop = &stop;
+  // The run goes on a thread of its own while this one, without the GIL, wakes up now and
+  // then to let Python handle signals: Ctrl-C then stops the run the way `gjklab run` stops
+  // on SIGINT (finished cases written, the archive left incomplete and resumable).
+  auto future =
+      std::async(std::launch::async, [&] { return experiment::run_experiment(config, options); });
+  for (;;) {
+    std::future_status status;
+    {
+      const py::gil_scoped_release release;
+      status = future.wait_for(std::chrono::milliseconds(100));
+    }
+    if (status == std::future_status::ready) break;
+    if (PyErr_CheckSignals() != 0) {
+      stop = true;
+      {
+        const py::gil_scoped_release release;
+        future.wait();
+      }
+      throw py::error_already_set();
+    }
+  }
+  const experiment::RunReport report = future.get();
+  std::ostringstream summary;
+  experiment::print_summary(summary, report.summary);
+  if (!report.families.empty()) {
+    summary << "\nper family:\n";
+    experiment::print_family_table(summary, report.families);
+  }
+  return {report.output.string(), report.cases, report.seconds, report.complete, summary.str()};
+}
+
+}  // namespace
+
+}  // namespace gjklab::python
+
+PYBIND11_MODULE(_gjklab, m) {
+  using namespace gjklab::python;
+  namespace ex = gjklab::experiment;
+  m.doc() = "gjklab: GJK collision and distance algorithms, their peers and an exact oracle";
+
+  // Experiment-file errors read as the command line prints them, as ValueError.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const ex::ConfigError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const ex::RealObjectError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const ex::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<Shape>(m, "Shape",
+                    "A shape built once from an n×3 float64 array (its convex hull), for many "
+                    "queries: query() and exact() take it wherever they take an array")
+      .def(py::init([](const py::handle& points) {
+             std::vector<gjklab::Vec3> cloud = cloud_from(points, "shape");
+             const py::gil_scoped_release release;
+             return Shape{std::make_shared<const gjklab::Polytope>(std::move(cloud))};
+           }),
+           py::arg("points"))
+      .def_property_readonly(
+          "vertices",
+          [](const Shape& s) {
+            const auto v = s.polytope->vertices();
+            py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+            auto w = out.mutable_unchecked<2>();
+            for (py::ssize_t i = 0; i < w.shape(0); ++i)
+              for (int k = 0; k < 3; ++k)
+                w(i, k) = v[static_cast<std::size_t>(i)][k];
+            return out;
+          })
+      .def("__len__", [](const Shape& s) { return s.polytope->vertices().size(); })
+      .def("__repr__", [](const Shape& s) {
+        return "gjklab.Shape(" + std::to_string(s.polytope->vertices().size()) + " points)";
+      });
+
+  py::class_<QueryResult>(m, "Result", "One algorithm's answer (the JSON names of gjklab query)")
+      .def_readonly("algorithm", &QueryResult::algorithm)
+      .def_property_readonly("intersect", [](const QueryResult& r) { return r.outcome.intersect; })
+      .def_property_readonly("distance", [](const QueryResult& r) { return r.outcome.distance; })
+      .def_property_readonly("depth", [](const QueryResult& r) { return r.outcome.depth; })
+      .def_property_readonly("normal",
+                             [](const QueryResult& r) { return vector_or_none(r.outcome.normal); })
+      .def_property_readonly(
+          "witness_a", [](const QueryResult& r) { return vector_or_none(r.outcome.witness_a); })
+      .def_property_readonly(
+          "witness_b", [](const QueryResult& r) { return vector_or_none(r.outcome.witness_b); })
+      .def_property_readonly("iterations",
+                             [](const QueryResult& r) { return r.outcome.iterations; })
+      .def_property_readonly("support_calls",
+                             [](const QueryResult& r) { return r.outcome.support_calls; })
+      .def_property_readonly("termination",
+                             [](const QueryResult& r) {
+                               return std::string(gjklab::to_string(r.outcome.termination));
+                             })
+      .def_property_readonly(
+          "exact",
+          [](const QueryResult& r) -> py::object {
+            if (!r.outcome.exact) return py::none();
+            return py::cast(ExactResult{*r.outcome.exact});
+          },
+          "the full exact answer (algorithm 'exact' only), else None")
+      .def("to_dict", &query_dict, "the answer as the JSON object gjklab query prints")
+      .def("__repr__", [](const QueryResult& r) {
+        return "gjklab.Result(" + py::repr(query_dict(r)).cast<std::string>() + ")";
+      });
+
+  py::class_<ExactResult>(m, "ExactAnswer", "The exact oracle's answer for two clouds")
+      .def_property_readonly("intersect", [](const ExactResult& e) { return e.answer.intersect; })
+      .def_property_readonly(
+          "distance_squared",
+          [](const ExactResult& e) { return fraction(e.answer.distance_squared); })
+      .def_property_readonly("distance", [](const ExactResult& e) { return e.answer.distance; })
+      .def_property_readonly("depth_squared",
+                             [](const ExactResult& e) -> py::object {
+                               if (!e.answer.depth_squared) return py::none();
+                               return fraction(*e.answer.depth_squared);
+                             })
+      .def_property_readonly("depth", [](const ExactResult& e) { return e.answer.depth; })
+      .def_property_readonly("hull_vertices_a",
+                             [](const ExactResult& e) { return e.answer.hull_vertices_a; })
+      .def_property_readonly("hull_vertices_b",
+                             [](const ExactResult& e) { return e.answer.hull_vertices_b; })
+      .def_property_readonly(
+          "method", [](const ExactResult& e) { return std::string(to_string(e.answer.method)); },
+          "how distance_squared was obtained: 'certified' or 'qp'")
+      .def_property_readonly("depth_method",
+                             [](const ExactResult& e) -> py::object {
+                               if (!e.answer.depth_squared) return py::none();
+                               return py::str(std::string(to_string(e.answer.depth_method)));
+                             })
+      .def_property_readonly(
+          "witness_a", [](const ExactResult& e) { return vector_or_none(e.answer.witness_a); })
+      .def_property_readonly(
+          "witness_b", [](const ExactResult& e) { return vector_or_none(e.answer.witness_b); })
+      .def_property_readonly(
+          "normal", [](const ExactResult& e) { return vector_or_none(e.answer.depth_normal); })
+      .def_property_readonly("swept", [](const ExactResult& e) { return e.answer.swept; })
+      .def("__repr__", [](const ExactResult& e) {
+        const auto& a = e.answer;
+        std::string text =
+            "gjklab.ExactAnswer(intersect=" + std::string(a.intersect ? "True" : "False") +
+            ", distance_squared=" + a.distance_squared.numerator + "/" +
+            a.distance_squared.denominator;
+        if (a.depth_squared)
+          text +=
+              ", depth_squared=" + a.depth_squared->numerator + "/" + a.depth_squared->denominator;
+        return text + ", method='" + std::string(to_string(a.method)) + "')";
+      });
+
+  py::class_<RunResult>(m, "RunReport", "What gjklab.run did")
+      .def_readonly("output", &RunResult::output)
+      .def_readonly("cases", &RunResult::cases)
+      .def_readonly("seconds", &RunResult::seconds)
+      .def_readonly("complete", &RunResult::complete)
+      .def_readonly("summary", &RunResult::summary)
+      .def("__repr__", [](const RunResult& r) {
+        return "gjklab.RunReport(output='" + r.output + "', cases=" + std::to_string(r.cases) +
+               ", complete=" + (r.complete ? "True" : "False") + ")";
+      });
+
+  m.def("query", &query, py::arg("a"), py::arg("b"), py::arg("algorithm") = "gjk-johnson",
+        py::kw_only(), py::arg("radius_a") = 0.0, py::arg("radius_b") = 0.0,
+        R"(Runs one algorithm on two point clouds (n×3 float64 arrays; their convex hulls are the
+shapes, swept by balls of radius_a and radius_b when given). Other keyword arguments are the
+algorithm's options, by the names experiment files use (see algorithms()). Raises ValueError
+for an unknown algorithm or option, a bad value, or an invalid cloud.)");
+  m.def("exact", &exact_answer, py::arg("a"), py::arg("b"), py::arg("depth") = false, py::kw_only(),
+        py::arg("radius_a") = 0.0, py::arg("radius_b") = 0.0,
+        R"(The exact oracle's answer for two point clouds: distance_squared (and depth_squared
+with depth=True) as fractions.Fraction, intersect, distance, hull vertex counts, and how the
+answer was obtained (method: 'certified' or 'qp').)");
+  m.def(
+      "read_points",
+      [](const std::string& path) {
+        const std::vector<gjklab::Vec3> points = ex::read_point_file(path);
+        py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+        auto w = out.mutable_unchecked<2>();
+        for (py::ssize_t i = 0; i < w.shape(0); ++i)
+          for (int k = 0; k < 3; ++k)
+            w(i, k) = points[static_cast<std::size_t>(i)][k];
+        return out;
+      },
+      py::arg("path"),
+      "The points of a .xyz, .off, .obj, .ply or .stl file (an n×3 float64 array), read as "
+      "gjklab query reads them");
+  m.def("algorithms", &algorithms,
+        "Every registered algorithm: name -> kind, description, and its options with defaults");
+  m.def("families", &families, "Every shape a [[family]] of an experiment can name");
+  m.def("real_objects", &ex::real_object_names,
+        "Names of the real objects (Debian package libcgal-demo), for shape = \"real_object\"");
+  m.def("run", &run, py::arg("experiment"), py::kw_only(), py::arg("out") = py::none(),
+        py::arg("threads") = py::none(), py::arg("cases") = py::none(), py::arg("force") = false,
+        py::arg("progress") = false,
+        R"(Runs an experiment (a TOML file's path, or TOML text) like `gjklab run` and writes its
+HDF5 archive (out: default the experiment's output). Returns a RunReport; read the archive with
+read_archive(). Ctrl-C stops the run, leaving a resumable archive.)");
+}

@@ -1,0 +1,46 @@
+"""gjklab: GJK collision and distance algorithms, their peers and an exact oracle.
+
+The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` command line:
+
+    query(a, b, algorithm="gjk-johnson", **options)  one algorithm on two n x 3 float64 arrays
+    Shape(points)                                     a shape built once, for many queries
+    exact(a, b, depth=False)                          the exact answer, as fractions.Fraction
+    algorithms()                                      every algorithm, its options and defaults
+    families()                                        every shape an experiment's family can name
+    real_objects()                                    names for shape = "real_object"
+    read_points(path)                                 a point or mesh file as an n x 3 array
+    run(experiment, out=..., threads=...)             an experiment file (or TOML text) -> archive
+
+and read_archive(path) reads an archive into pandas DataFrames.
+"""
+
+from ._gjklab import (
+    ExactAnswer,
+    Result,
+    RunReport,
+    Shape,
+    algorithms,
+    exact,
+    families,
+    query,
+    read_points,
+    real_objects,
+    run,
+)
+from .archive import Archive, read_archive
+
+__all__ = [
+    "Archive",
+    "ExactAnswer",
+    "Result",
+    "RunReport",
+    "Shape",
+    "algorithms",
+    "exact",
+    "families",
+    "query",
+    "read_archive",
+    "read_points",
+    "real_objects",
+    "run",
+]
