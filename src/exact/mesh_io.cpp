@@ -50,12 +50,30 @@ void check_vertex_count(const std::string& name, int line, const std::string& te
                              " bytes can hold");
 }
 
+/// A vertex property line "property TYPE NAME": x, y and z must be scalars of a floating-point
+/// type, because CGAL's reader casts them to float or double properties without checking (a
+/// list, or an integer type such as int32, made it call through a null pointer).
+void check_ply_coordinate_type(const std::string& name, int number,
+                               const std::vector<std::string>& w) {
+  const std::string& property = w.back();
+  if (property != "x" && property != "y" && property != "z") return;
+  const std::string where = name + ":" + std::to_string(number) + ": vertex property '" + property;
+  if (w[1] == "list") throw std::runtime_error(where + "' is a list; coordinates must be scalars");
+  const std::string& type = w[1];
+  if (type != "float" && type != "float32" && type != "double" && type != "float64")
+    throw std::runtime_error(where + "' has type '" + type +
+                             "'; coordinates must be float or double");
+}
+
 /// The checks of a PLY header that CGAL's reader does not make (it crashed on them): the
-/// vertex count, and x, y, z declared as scalar properties (not lists).
+/// vertex count, every property inside an element (CGAL adds a property to the last element
+/// read, with no check that there is one), and x, y, z declared as scalar properties (not
+/// lists).
 void check_ply_header(const std::filesystem::path& file, std::uintmax_t file_size) {
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
   std::string line;
+  bool in_element = false;
   bool in_vertex = false;
   for (int number = 1; number <= 1000 && std::getline(in, line); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -63,13 +81,16 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t file_siz
     if (w.empty()) continue;
     if (w[0] == "end_header") return;
     if (w[0] == "element") {
+      in_element = true;
       in_vertex = w.size() >= 3 && w[1] == "vertex";
       if (in_vertex) check_vertex_count(name, number, w[2], file_size);
-    } else if (w[0] == "property" && in_vertex && w.size() >= 2 && w[1] == "list") {
-      const std::string& property = w.back();
-      if (property == "x" || property == "y" || property == "z")
-        throw std::runtime_error(name + ":" + std::to_string(number) + ": vertex property '" +
-                                 property + "' is a list; coordinates must be scalars");
+    } else if (w[0] == "property" && !in_element && number > 2) {
+      // Lines 1 and 2 are the "ply" and format lines, whatever they hold (CGAL's own checks).
+      throw std::runtime_error(name + ":" + std::to_string(number) +
+                               ": a property before any element (declare 'element NAME COUNT' "
+                               "first)");
+    } else if (w[0] == "property" && in_vertex && w.size() >= 2) {
+      check_ply_coordinate_type(name, number, w);
     }
   }
   throw std::runtime_error(name + ": no end_header within the first 1000 lines of the PLY header");

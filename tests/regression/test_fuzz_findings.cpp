@@ -1,0 +1,93 @@
+// Inputs found by the fuzz targets (fuzz/): each one crashed, corrupted memory or broke a
+// documented property before its fix. The inputs are data under regression/data/fuzz/ or
+// regression/data/hostile/, named after what they hold.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include "gjklab/exact/mesh_io.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
+
+using namespace gjklab;
+
+namespace {
+
+std::string hostile(const char* name) {
+  return std::string(GJKLAB_REGRESSION_DATA_DIR) + "/hostile/" + name;
+}
+
+/// The one case of a cases file under regression/data/fuzz/.
+experiment::PointCase fuzz_case(const char* name) {
+  const auto cases =
+      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/" + name);
+  REQUIRE(cases.size() == 1);
+  REQUIRE(std::holds_alternative<experiment::PointCase>(cases[0]));
+  return std::get<experiment::PointCase>(cases[0]);
+}
+
+/// No NaN anywhere in an answer reported as converged.
+bool converged_answer_is_finite(const experiment::Outcome& o) {
+  if (o.termination != Termination::converged) return true;
+  auto nan = [](const std::optional<double>& x) { return x && std::isnan(*x); };
+  auto nan_vec = [](const std::optional<Vec3>& v) { return v && v->array().isNaN().any(); };
+  return !nan(o.distance) && !nan(o.depth) && !nan_vec(o.normal) && !nan_vec(o.witness_a) &&
+         !nan_vec(o.witness_b);
+}
+
+}  // namespace
+
+TEST_CASE("PLY with a property before any element: a clear error with the line, not an access "
+          "before the start of CGAL's element list",
+          "[regression][hostile][fuzz]") {
+  // CGAL's PLY reader adds each property to its last element, m_elements.back(), without
+  // checking that there is one (undefined behaviour; UBSan: offset applied to a null pointer).
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_property_before_element.ply")),
+                    Catch::Contains("ply_property_before_element.ply:3") &&
+                        Catch::Contains("property before any element"));
+  CHECK_THROWS_AS(experiment::read_point_file(hostile("ply_property_before_element.ply")),
+                  experiment::InputError);
+}
+
+TEST_CASE("PLY with z declared int32: a clear error with the line, not a call through a null "
+          "pointer in CGAL's reader",
+          "[regression][hostile][fuzz]") {
+  // CGAL's reader takes every coordinate property to be float or double (dynamic_cast, with
+  // only a disabled assertion behind it), so an integer z was a null pointer dereference.
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_z_as_int32.ply")),
+                    Catch::Contains("ply_z_as_int32.ply:6") && Catch::Contains("int32"));
+}
+
+#ifdef GJKLAB_HAVE_FCL
+TEST_CASE("FCL on cubes with a 1e154 vertex: NaN closest points are a numerical failure, not "
+          "converged",
+          "[regression][fuzz]") {
+  // fcl-libccd's distance query returns a finite distance (177.76) with NaN closest points here
+  // (a vertex at 1e154, whose square overflows); the adapter checked only the distance and
+  // reported the NaN witnesses as converged.
+  const experiment::PointCase c = fuzz_case("fcl_cubes_with_1e154_vertex_overlapping.jsonl");
+  const Polytope a(c.a), b(c.b);
+  for (const char* name : {"fcl-libccd", "fcl-indep"}) {
+    CAPTURE(name);
+    const experiment::Outcome o = experiment::run_algorithm(
+        *experiment::find_algorithm(name), a, b, SweptRadii{}, experiment::AlgorithmOptions{});
+    CHECK(converged_answer_is_finite(o));
+  }
+}
+
+TEST_CASE("FCL on a vertex at 1e300 against a point at -7e174: refused as invalid input, not an "
+          "assertion that aborts the program",
+          "[regression][fuzz]") {
+  // fcl-libccd's GJK distance asserted "A is not in region 1" (its triple products overflow)
+  // and Debian's FCL keeps assertions: `gjklab query` died on this pair.
+  const experiment::PointCase c = fuzz_case("fcl_vertex_at_1e300_assertion_abort.jsonl");
+  const Polytope a(c.a), b(c.b);
+  for (const char* name : {"fcl-libccd", "fcl-indep"}) {
+    CAPTURE(name);
+    const experiment::Outcome o = experiment::run_algorithm(
+        *experiment::find_algorithm(name), a, b, SweptRadii{}, experiment::AlgorithmOptions{});
+    CHECK(o.termination == Termination::invalid_input);
+  }
+}
+#endif
