@@ -56,9 +56,17 @@ Vec3 to_vec(const fcl::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+/// Every reported number is finite. FCL can return NaN closest points with a finite distance
+/// (a vertex near 1e154, whose square overflows), so each number is checked, not only the
+/// distance and the depth.
+bool all_finite(const PenetrationResult& r) {
+  return std::isfinite(r.distance) && std::isfinite(r.depth) && r.normal.allFinite() &&
+         r.witness_a.allFinite() && r.witness_b.allFinite();
+}
+
 template <class Solver>
-PenetrationResult run(const Solver& solver, const fcl::Convexd& a, const fcl::Convexd& b,
-                      bool indep) {
+PenetrationResult query(const Solver& solver, const fcl::Convexd& a, const fcl::Convexd& b,
+                        bool indep) {
   const fcl::Transform3d identity = fcl::Transform3d::Identity();
   PenetrationResult r;
   std::vector<fcl::ContactPointd> contacts;
@@ -72,7 +80,6 @@ PenetrationResult run(const Solver& solver, const fcl::Convexd& a, const fcl::Co
       if (const double len = n.norm(); len > 0 && std::isfinite(len)) r.normal = n / len;
       r.witness_a = r.witness_b = to_vec(c.pos);
     }
-    if (!std::isfinite(r.depth)) r.termination = Termination::numerical_failure;
     return r;
   }
   double distance = -1;
@@ -83,11 +90,31 @@ PenetrationResult run(const Solver& solver, const fcl::Convexd& a, const fcl::Co
     r.witness_b = to_vec(pb);
     const Vec3 ab = r.witness_b - r.witness_a;
     if (const double len = ab.norm(); len > 0 && std::isfinite(len)) r.normal = ab / len;
-    if (!std::isfinite(distance)) r.termination = Termination::numerical_failure;
   } else {
     r.distance = 0;
     if (indep) r.termination = Termination::step_limit;
   }
+  return r;
+}
+
+/// Largest coordinate magnitude (length units) given to FCL. Its libccd-based GJK takes triple
+/// products, cubic in the coordinates, which overflow beyond about 1e102; on such a pair (a
+/// vertex at 1e300) its assertion "A is not in region 1" fired and, as Debian's FCL keeps its
+/// assertions, aborted the whole program. Beyond this bound FCL is not called.
+constexpr double kMaxFclCoordinate = 1e100;
+
+bool within_fcl_range(const fcl::Convexd& c) {
+  for (const fcl::Vector3d& v : c.getVertices())
+    if (!(v.cwiseAbs().maxCoeff() <= kMaxFclCoordinate)) return false;
+  return true;
+}
+
+/// The query, with any non-finite answer reported as a numerical failure (never as converged).
+template <class Solver>
+PenetrationResult run(const Solver& solver, const fcl::Convexd& a, const fcl::Convexd& b,
+                      bool indep) {
+  PenetrationResult r = query(solver, a, b, indep);
+  if (!all_finite(r)) r.termination = Termination::numerical_failure;
   return r;
 }
 
@@ -98,6 +125,11 @@ PenetrationResult fcl_query(const FclShape& a, const FclShape& b, FclSolver solv
   validate(options);
   const fcl::Convexd& ca = *a.impl().convex;
   const fcl::Convexd& cb = *b.impl().convex;
+  if (!within_fcl_range(ca) || !within_fcl_range(cb)) {
+    PenetrationResult r;
+    r.termination = Termination::invalid_input;
+    return r;
+  }
   if (solver == FclSolver::libccd) {
     fcl::detail::GJKSolver_libccdd s;
     s.max_collision_iterations = static_cast<unsigned>(options.max_iterations);

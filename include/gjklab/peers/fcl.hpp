@@ -23,7 +23,10 @@
 // use different algorithms and tolerances), distance is 0. FCL reports neither iterations
 // nor support calls (both 0) nor why it stopped: termination is `converged`, except for
 // fcl-indep when both queries fail to answer (its GJK stops at gjk_max_iterations or its EPA
-// fails, FCL does not say which), reported as `step_limit`.
+// fails, FCL does not say which), reported as `step_limit`; any non-finite number in the answer
+// makes it `numerical_failure`. A pair with a coordinate beyond 1e100 in magnitude is not given
+// to FCL (`invalid_input`): its triple products overflow there and an assertion inside FCL
+// aborted the program.
 #pragma once
 
 #include <memory>
