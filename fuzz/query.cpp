@@ -1,0 +1,216 @@
+// The queries themselves: `gjklab query` runs every selected algorithm of the registry
+// (experiment::run_algorithm) on a pair of point clouds, optionally sphere-swept.
+//
+// Input: a compact encoding of two small adversarial clouds (decode_pair below): huge, tiny,
+// subnormal, repeated, nearly equal and flat coordinates, with optional radii, an exact depth
+// request and an iteration bound, as a user can give them with --radius-a/-b, --depth and
+// --max-iterations. Properties, each a trap when violated:
+//  - every registered algorithm answers with a termination (a value of the enum), and an answer
+//    reported as converged has no NaN in it and no negative distance or depth;
+//  - `exact` and `gjk-certified` answer every pair, with the same exact rationals (intersect,
+//    squared distance, squared depth) as each other and as the oracle's QP alone
+//    (exact::solve_swept with the certificates off), the independent path.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
+#include "support.hpp"
+
+namespace {
+
+using gjklab::Polytope;
+using gjklab::SweptRadii;
+using gjklab::Vec3;
+using gjklab::fuzz::violated;
+namespace experiment = gjklab::experiment;
+namespace exact = gjklab::exact;
+
+/// Reads the input byte by byte; past the end it gives zeros.
+class ByteReader {
+ public:
+  explicit ByteReader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  std::uint8_t byte() { return pos_ < bytes_.size() ? bytes_[pos_++] : 0; }
+  double raw_double() {
+    std::uint64_t bits = 0;
+    for (int k = 0; k < 8; ++k)
+      bits |= std::uint64_t{byte()} << (8 * k);
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::size_t pos_ = 0;
+};
+
+constexpr double kMax = std::numeric_limits<double>::max();
+
+/// Values that break floating-point code: the extremes, subnormals, one ulp above 1, square
+/// roots of the extremes (whose squares overflow or underflow), and plain ones.
+constexpr double kPalette[] = {
+    0,       1,           0.5,     0.1,    1.0 / 3, 3,      7,
+    1e-8,    1e-12,       1e-100,  1e-154, 1e-300,  5e-324, 2.2250738585072014e-308,
+    0x1p-52, 1 + 0x1p-52, 0x1p53,  1e8,    1e16,    1e100,  1e154,
+    1e200,   1e300,       1.5e308, kMax,   1e-7,    1e-200, 0x1p-1074 * 3};
+
+/// Exponents for small integers scaled by a power of two (exact, so flat and collinear
+/// configurations stay exact).
+constexpr int kExponents[] = {0,   -1,   -2,   -10,   -26,   -52,  10, 26, 52, 100, -100,
+                              500, -500, 1000, -1000, -1070, 1020, 3,  -3, 20, -20, 60,
+                              -60, 200,  -200, 300,   -300,  0,    0,  0,  0,  0};
+
+double decode_coordinate(ByteReader& in, const std::vector<double>& earlier) {
+  const std::uint8_t tag = in.byte();
+  const double previous = earlier.empty() ? 0.0 : earlier.back();
+  switch (tag % 8) {
+    case 0: {
+      const double x = in.raw_double();
+      // The readers refuse non-finite coordinates; the largest finite ones stand in for them.
+      return std::isfinite(x) ? x : std::copysign(kMax, x);
+    }
+    case 1: {
+      const double x = kPalette[in.byte() % std::size(kPalette)];
+      return (tag & 8) ? -x : x;
+    }
+    case 2:
+      return std::ldexp(static_cast<std::int8_t>(in.byte()), kExponents[(tag >> 3) % 32]);
+    case 3:
+      return previous;
+    case 4:
+      return earlier.empty() ? 0.0 : earlier[in.byte() % earlier.size()];
+    case 5: {
+      // A few ulps away from the previous coordinate: nearly coincident points.
+      const int steps = static_cast<std::int8_t>(in.byte()) % 8;
+      double x = previous;
+      for (int k = 0; k < std::abs(steps); ++k)
+        x = std::nextafter(x, steps > 0 ? kMax : -kMax);
+      return x;
+    }
+    case 6:
+      return -previous;
+    default:
+      return static_cast<std::int8_t>(in.byte());
+  }
+}
+
+std::vector<Vec3> decode_cloud(ByteReader& in, int n, std::vector<double>& earlier) {
+  std::vector<Vec3> cloud;
+  for (int i = 0; i < n; ++i) {
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) {
+      p[k] = decode_coordinate(in, earlier);
+      earlier.push_back(p[k]);
+    }
+    cloud.push_back(p);
+  }
+  return cloud;
+}
+
+constexpr double kRadii[] = {0, 0.5, 1, 1e-8, 1e-300, 1e8, 1e150, 1e300};
+constexpr int kMaxPoints = 10;  ///< per cloud: small clouds keep every input within milliseconds
+
+struct FuzzPair {
+  std::vector<Vec3> a, b;
+  SweptRadii radii;
+  bool depth = false;      ///< --depth
+  int max_iterations = 0;  ///< --max-iterations (0: each algorithm's default)
+};
+
+FuzzPair decode_pair(std::span<const std::uint8_t> bytes) {
+  ByteReader in(bytes);
+  FuzzPair p;
+  const int na = 1 + in.byte() % kMaxPoints;
+  const int nb = 1 + in.byte() % kMaxPoints;
+  const std::uint8_t flags = in.byte();
+  p.depth = flags & 1;
+  p.radii = {kRadii[(flags >> 1) & 7], kRadii[(flags >> 4) & 7]};
+  if (flags & 0x80) p.max_iterations = 1 + in.byte() % 64;
+  std::vector<double> earlier;
+  p.a = decode_cloud(in, na, earlier);
+  p.b = decode_cloud(in, nb, earlier);
+  return p;
+}
+
+void check_outcome(const experiment::AlgorithmInfo& algorithm, const experiment::Outcome& o) {
+  const std::string name(algorithm.name);
+  if (static_cast<int>(o.termination) > static_cast<int>(gjklab::Termination::invalid_input))
+    violated(name + ": a termination outside the enum");
+  if (o.termination != gjklab::Termination::converged) return;
+  auto bad = [](const std::optional<double>& x) { return x && std::isnan(*x); };
+  auto bad_vec = [](const std::optional<Vec3>& v) { return v && v->array().isNaN().any(); };
+  if (bad(o.distance) || bad(o.depth) || bad_vec(o.normal) || bad_vec(o.witness_a) ||
+      bad_vec(o.witness_b))
+    violated(name + ": a NaN in an answer reported as converged");
+  if ((o.distance && *o.distance < 0) || (o.depth && *o.depth < 0))
+    violated(name + ": a negative distance or depth reported as converged");
+}
+
+bool same(const exact::Rational& x, const exact::Rational& y) {
+  return x.numerator == y.numerator && x.denominator == y.denominator;
+}
+
+/// Exact rationals of two answers agree (the depth where both have one).
+void check_agree(const exact::OracleAnswer& x, const exact::OracleAnswer& y, const char* what) {
+  if (x.intersect != y.intersect) violated(std::string(what) + ": intersect differs");
+  if (!same(x.distance_squared, y.distance_squared))
+    violated(std::string(what) + ": squared distance differs");
+  if (x.depth_squared && y.depth_squared && !same(*x.depth_squared, *y.depth_squared))
+    violated(std::string(what) + ": squared depth differs");
+}
+
+/// With GJKLAB_FUZZ_PRINT_CASE set, each input is first printed as a `gjklab query --cases`
+/// line (with its options), so that a crash input becomes a regression case.
+void print_case(const FuzzPair& pair) {
+  if (!std::getenv("GJKLAB_FUZZ_PRINT_CASE")) return;
+  const experiment::PointCase c{"fuzz", pair.a, pair.b, pair.radii.a, pair.radii.b};
+  std::printf("%s\n# depth %d, max_iterations %d\n", experiment::case_to_json_line(c).c_str(),
+              pair.depth ? 1 : 0, pair.max_iterations);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const FuzzPair pair = decode_pair(std::span(data, size));
+  print_case(pair);
+  const Polytope a(pair.a), b(pair.b);
+  experiment::AlgorithmOptions options;
+  if (pair.max_iterations > 0) options.set_max_iterations(pair.max_iterations);
+  options.oracle.depth = pair.depth;
+
+  std::optional<exact::OracleAnswer> from_exact, from_certified;
+  for (const experiment::AlgorithmInfo& algorithm : experiment::algorithms()) {
+    if (!experiment::handles(algorithm, pair.radii)) continue;
+    experiment::Outcome o;
+    try {
+      o = experiment::run_algorithm(algorithm, a, b, pair.radii, options);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(algorithm.name.size()),
+                   algorithm.name.data(), e.what());
+      violated("an algorithm threw on two finite clouds instead of answering");
+    }
+    check_outcome(algorithm, o);
+    if (algorithm.name == "exact") from_exact = o.exact;
+    if (algorithm.name == "gjk-certified") from_certified = o.exact;
+  }
+  if (!from_exact || !from_certified) violated("exact or gjk-certified gave no exact answer");
+  check_agree(*from_exact, *from_certified, "exact vs gjk-certified");
+  exact::OracleOptions qp_only;
+  qp_only.depth = pair.depth;
+  qp_only.certificates = false;
+  qp_only.hull_vertices = false;
+  const exact::OracleAnswer qp =
+      exact::solve_swept(pair.a, pair.b, pair.radii.a, pair.radii.b, qp_only);
+  check_agree(*from_certified, qp, "gjk-certified vs the QP alone");
+  return 0;
+}
