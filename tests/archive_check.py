@@ -34,7 +34,8 @@ ALGORITHM = {"intersect": bool, "distance": np.float64, "abs_error": np.float64,
              "support_calls": np.int32, "termination": TERMINATIONS, "time_ns": np.float64,
              "failure": FAILURES, "depth": np.float64, "depth_abs_error": np.float64,
              "depth_rel_error": np.float64, "witness_error_a": np.float64,
-             "witness_error_b": np.float64, "witness_distance_error": np.float64}
+             "witness_error_b": np.float64, "witness_distance_error": np.float64,
+             "rounded_exact_distance": np.float64, "rounded_exact_depth": np.float64}
 ALGORITHM_VEC3 = ("witness_a", "witness_b")
 GEOMETRY = {"case_id": np.uint64, "a_offset": np.uint64, "a_count": np.uint64,
             "b_offset": np.uint64, "b_count": np.uint64}

@@ -41,6 +41,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   cmd->add_option("--seed", args.seed, "seed of the inputs (default 1)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", args.quiet, "no progress lines on stderr");
+  cmd->add_option("--precision", args.precision,
+                  "floating-point type of the GJK queries (gjk-bool, the distance variants, "
+                  "epa): float, double (default) or long double; peers run in double")
+      ->check(CLI::IsMember({"float", "double", "long double"}));
   return cmd;
 }
 
@@ -66,6 +70,7 @@ int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& er
   if (args.configurations > 0) config.configurations = args.configurations;
   if (args.batch_us >= 0) config.batch_seconds = args.batch_us * 1e-6;
   if (args.seed >= 0) config.seed = static_cast<std::uint64_t>(args.seed);
+  if (!args.precision.empty()) config.precision = *precision_from_string(args.precision);
 
   bench::BenchReport report;
   try {

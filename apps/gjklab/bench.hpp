@@ -25,6 +25,7 @@ struct BenchArgs {
   double batch_us = -1;                 ///< < 0: the config's (500 µs)
   long long seed = -1;                  ///< < 0: the config's (1)
   bool quiet = false;
+  std::string precision;  ///< GJK queries' floating-point type; empty: the config's (double)
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& args);

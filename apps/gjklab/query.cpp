@@ -26,10 +26,11 @@ using Json = nlohmann::ordered_json;
 
 /// The JSON line of one algorithm's answer for one case.
 std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
-                        const experiment::Outcome& o) {
+                        const experiment::Outcome& o, ScalarPrecision precision) {
   Json j;
   j["id"] = c.id;
   j["algorithm"] = algorithm.name;
+  if (precision != ScalarPrecision::double_float) j["precision"] = to_string(precision);
   if (c.radius_a != 0 || c.radius_b != 0) {
     j["radius_a"] = c.radius_a;
     j["radius_b"] = c.radius_b;
@@ -82,11 +83,15 @@ std::vector<std::string> answer_case(const PointCase& c,
   std::vector<std::string> lines;
   const Polytope a(c.a), b(c.b);
   const SweptRadii radii{c.radius_a, c.radius_b};
+  const bool other_precision = options.precision != ScalarPrecision::double_float;
   for (const AlgorithmInfo* algorithm : selected) {
     if (!named && !experiment::handles(*algorithm, radii)) continue;
+    if (!named && other_precision && !experiment::takes_precision(*algorithm)) continue;
     try {
       lines.push_back(
-          answer_line(c, *algorithm, experiment::run_algorithm(*algorithm, a, b, radii, options)));
+          answer_line(c, *algorithm, experiment::run_algorithm(*algorithm, a, b, radii, options),
+                      experiment::takes_precision(*algorithm) ? options.precision
+                                                              : ScalarPrecision::double_float));
     } catch (const std::exception& e) {
       lines.push_back(error_line(c.id, e.what(), algorithm));
     }
@@ -207,6 +212,11 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
       ->check(CLI::IsMember({"json", "table"}));
   cmd->add_option("--radius-b", args.radius_b, "sweep B's hull by a ball of this radius")
       ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
+  cmd->add_option("--precision", args.precision,
+                  "floating-point type of the GJK queries (gjk-bool, the distance variants, "
+                  "epa): float, double (default) or long double; the point files are rounded "
+                  "to it. Without --algorithms, only those queries answer")
+      ->check(CLI::IsMember({"float", "double", "long double"}));
   return cmd;
 }
 
@@ -244,6 +254,7 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   experiment::AlgorithmOptions options;
   if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
   options.oracle.depth = args.depth;
+  options.precision = *precision_from_string(args.precision);  // checked by the parser
 
   std::string source;
   const std::vector<CaseOrError> cases = load_cases(args, in, source);

@@ -22,6 +22,8 @@ struct QueryArgs {
   double radius_a = 0;
   double radius_b = 0;
   std::string format = "json";  ///< "json" (a line per answer) or "table" (for a terminal)
+  /// Floating-point type of the GJK queries: "float", "double" or "long double".
+  std::string precision = "double";
 };
 
 /// Registers the `query` subcommand and its options on app.

@@ -74,6 +74,14 @@ bool boolean(std::string_view text) {
   throw std::invalid_argument("expected true or false, got '" + std::string(text) + "'");
 }
 
+ScalarPrecision precision(std::string_view text) {
+  const auto p = precision_from_string(text);
+  if (!p)
+    throw std::invalid_argument("unknown precision '" + std::string(text) +
+                                "'; valid: float, double, long double");
+  return *p;
+}
+
 std::string text_of(const Vec3& d) {
   return round_trip(d.x()) + " " + round_trip(d.y()) + " " + round_trip(d.z());
 }
@@ -141,8 +149,10 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
                                                          "relative_contact",
                                                          "start",
                                                          "initial_direction",
-                                                         "recenter"};
-  if (algorithm == "gjk-bool") return {"max_iterations", "start", "initial_direction", "recenter"};
+                                                         "recenter",
+                                                         "precision"};
+  if (algorithm == "gjk-bool")
+    return {"max_iterations", "start", "initial_direction", "recenter", "precision"};
   if (uses_distance_options(algorithm)) return distance;
   if (algorithm == "gjk-nesterov") {
     auto keys = distance;
@@ -154,7 +164,7 @@ std::vector<std::string_view> option_keys(std::string_view algorithm) {
     return {"max_iterations", "max_depth_iterations", "mpr_tolerance", "epa_tolerance"};
   if (algorithm == "epa")
     return {"max_iterations",     "max_faces", "epa_relative_gap", "relative_noise",
-            "gjk_max_iterations", "gjk_start", "recenter"};
+            "gjk_max_iterations", "gjk_start", "recenter",         "precision"};
   if (algorithm == "sat") return {"early_exit"};
 #ifdef GJKLAB_HAVE_FCL
   if (algorithm == "fcl-libccd" || algorithm == "fcl-indep")
@@ -169,6 +179,10 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
     throw std::invalid_argument("option '" + std::string(key) + "' does not apply to " + spec.name);
   AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
+  if (key == "precision") {  // every GJK query takes it (option_keys decides which)
+    o.precision = precision(text);
+    return;
+  }
   if (n == "gjk-bool") {
     if (key == "max_iterations") {
       o.gjk_boolean.max_iterations = iterations(key, text);
@@ -238,16 +252,24 @@ void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text
 std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec) {
   const AlgorithmOptions& o = spec.options;
   const std::string& n = spec.name;
+  const std::pair<std::string, std::string> precision{"precision",
+                                                      std::string(to_string(o.precision))};
   if (n == "gjk-bool")
     return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)},
             {"start", std::string(to_string(o.gjk_boolean.start))},
             {"initial_direction", text_of(o.gjk_boolean.initial_direction)},
-            {"recenter", o.gjk_boolean.recenter ? "true" : "false"}};
-  if (uses_distance_options(n)) return describe_distance(o.gjk_distance);
+            {"recenter", o.gjk_boolean.recenter ? "true" : "false"},
+            precision};
+  if (uses_distance_options(n)) {
+    auto described = describe_distance(o.gjk_distance);
+    described.push_back(precision);
+    return described;
+  }
   if (n == "gjk-nesterov") {
     auto described = describe_distance(o.gjk_nesterov);
     described.emplace_back("normalize_direction",
                            o.gjk_nesterov.normalize_direction ? "true" : "false");
+    described.push_back(precision);
     return described;
   }
   if (is_libccd(n))
@@ -265,7 +287,8 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
             {"relative_noise", round_trip(o.epa.relative_noise)},
             {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)},
             {"gjk_start", std::string(to_string(o.gjk_distance.start))},
-            {"recenter", o.gjk_distance.recenter ? "true" : "false"}};
+            {"recenter", o.gjk_distance.recenter ? "true" : "false"},
+            precision};
   if (n == "sat") return {{"early_exit", o.sat.early_exit ? "true" : "false"}};
 #ifdef GJKLAB_HAVE_FCL
   if (n == "fcl-libccd" || n == "fcl-indep")

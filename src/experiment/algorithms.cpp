@@ -10,6 +10,7 @@
 
 #include "gjklab/exact/hull_features.hpp"
 #include "gjklab/experiment/certified.hpp"
+#include "gjklab/geometry/scalar_cloud.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -62,6 +63,8 @@ Outcome from_distance(const DistanceResult& r) {
   return o;
 }
 
+Outcome from_penetration(const PenetrationResult& r, bool deepest_points);
+
 Outcome run_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean));
 }
@@ -102,6 +105,117 @@ DistanceResult traced_polyak_distance(const Polytope& a, const Polytope& b,
   return gjk_polyak(a, b, o.gjk_distance, trace);
 }
 
+// ---- the GJK queries in float and long double (AlgorithmOptions::precision) ---------------
+//
+// The same queries, run on the clouds rounded to T (ScalarCloud<T>); their answers are
+// converted to double for the records. Sphere-swept shapes: the radii are rounded to T too; the
+// distance variants and epa shift the cores' answer by them in double (gjk/swept.hpp), the
+// boolean walks the swept support map in T.
+
+/// A distance variant as a type whose query takes shapes of any precision.
+template <class Sub>
+struct SubAlgorithmQuery {
+  template <class S, class Observer>
+  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
+    return gjk_distance_with<Sub>(a, b, o.gjk_distance, observer);
+  }
+};
+struct NesterovQuery {
+  template <class S, class Observer>
+  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
+    return gjk_nesterov(a, b, o.gjk_nesterov, observer);
+  }
+};
+struct PolyakQuery {
+  template <class S, class Observer>
+  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
+    return gjk_polyak(a, b, o.gjk_distance, observer);
+  }
+};
+
+/// The radii rounded to T (and back to double, exactly).
+template <class T>
+SweptRadii rounded_radii(const SweptRadii& r) {
+  return {static_cast<double>(static_cast<T>(r.a)), static_cast<double>(static_cast<T>(r.b))};
+}
+
+template <class Query, class T>
+Outcome distance_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                    const AlgorithmOptions& o, TraceRecorder* trace) {
+  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  DistanceResult d = trace ? to_double(Query::run(ca, cb, o, *trace))
+                           : to_double(Query::run(ca, cb, o, NoTrace{}));
+  if (r.any()) d = swept_distance(d, rounded_radii<T>(r));
+  return from_distance(d);
+}
+
+template <class T>
+Outcome gjk_bool_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                    const AlgorithmOptions& o, TraceRecorder* trace) {
+  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  auto query = [&](const auto& sa, const auto& sb) {
+    return trace ? gjk_intersect(sa, sb, o.gjk_boolean, *trace)
+                 : gjk_intersect(sa, sb, o.gjk_boolean);
+  };
+  if (!r.any()) return from_boolean(query(ca, cb));
+  using Swept = SphereSwept<ScalarCloud<T>>;
+  return from_boolean(query(Swept(ca, static_cast<T>(r.a)), Swept(cb, static_cast<T>(r.b))));
+}
+
+template <class T>
+Outcome epa_in(const Polytope& a, const Polytope& b, const SweptRadii& r, const AlgorithmOptions& o,
+               TraceRecorder*) {
+  thread_local EpaPolytopeT<T> workspace;  // buffers reused across queries on this thread
+  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  const EpaResult core = to_double(gjk_epa(ca, cb, o.gjk_distance, o.epa, workspace));
+  Outcome out =
+      from_penetration(r.any() ? swept_penetration(core, rounded_radii<T>(r)) : core, true);
+  out.iterations = core.gjk_iterations + core.iterations;  // GJK's, then EPA's
+  return out;
+}
+
+using PrecisionRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
+                                 const AlgorithmOptions&, TraceRecorder*);
+
+/// The entry's run_at_precision: Run<float> or Run<long double> by options.precision.
+template <template <class> class Run>
+Outcome at_precision(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                     const AlgorithmOptions& o, TraceRecorder* trace) {
+  switch (o.precision) {
+    case ScalarPrecision::single_float:
+      return Run<float>::run(a, b, r, o, trace);
+    case ScalarPrecision::long_double:
+      return Run<long double>::run(a, b, r, o, trace);
+    case ScalarPrecision::double_float:
+      break;
+  }
+  throw std::logic_error("run_at_precision called for double");
+}
+template <class Query>
+struct DistanceIn {
+  template <class T>
+  struct At {
+    static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                       const AlgorithmOptions& o, TraceRecorder* trace) {
+      return distance_in<Query, T>(a, b, r, o, trace);
+    }
+  };
+};
+template <class T>
+struct GjkBoolIn {
+  static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                     const AlgorithmOptions& o, TraceRecorder* trace) {
+    return gjk_bool_in<T>(a, b, r, o, trace);
+  }
+};
+template <class T>
+struct EpaIn {
+  static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                     const AlgorithmOptions& o, TraceRecorder* trace) {
+    return epa_in<T>(a, b, r, o, trace);
+  }
+};
+
 using DistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&, const AlgorithmOptions&);
 using TracedDistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&,
                                                const AlgorithmOptions&, TraceRecorder&);
@@ -128,7 +242,7 @@ Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRa
 
 /// The registry entry of a GJK distance variant: plain, traced and sphere-swept runs of one
 /// core query.
-template <DistanceQuery Query, TracedDistanceQuery Traced>
+template <DistanceQuery Query, TracedDistanceQuery Traced, class AnyPrecision>
 constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description) {
   return {name,
           AnswerKind::distance,
@@ -138,12 +252,14 @@ constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_vi
           false,
           false,
           run_swept_distance<Query>,
-          trace_swept_distance<Traced>};
+          trace_swept_distance<Traced>,
+          at_precision<DistanceIn<AnyPrecision>::template At>};
 }
 
 template <class Sub>
 constexpr AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
-  return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>>(name, description);
+  return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>, SubAlgorithmQuery<Sub>>(
+      name, description);
 }
 
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
@@ -384,7 +500,8 @@ Outcome at_zero_radii(const Polytope& a, const Polytope& b, const AlgorithmOptio
 constexpr std::array kAlgorithms = {
     AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
                   "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
-                  trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool},
+                  trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool,
+                  at_precision<GjkBoolIn>},
     gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
                                            "GJK distance with Johnson's distance sub-algorithm"),
     AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect",
@@ -398,14 +515,14 @@ constexpr std::array kAlgorithms = {
         "gjk-sv", "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)"),
     gjk_variant_entry<VoronoiSubAlgorithm>("gjk-voronoi",
                                            "GJK distance with Voronoi-region tests (Ericson 2005)"),
-    gjk_distance_entry<nesterov_distance, traced_nesterov_distance>(
+    gjk_distance_entry<nesterov_distance, traced_nesterov_distance, NesterovQuery>(
         "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes"),
-    gjk_distance_entry<polyak_distance, traced_polyak_distance>(
+    gjk_distance_entry<polyak_distance, traced_polyak_distance, PolyakQuery>(
         "gjk-polyak",
         "Polyak-accelerated GJK distance (GJK++, Montaut et al. 2024), signed volumes"),
     AlgorithmInfo{"epa", AnswerKind::distance,
                   "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
-                  run_epa, nullptr, false, true, swept_epa},
+                  run_epa, nullptr, false, true, swept_epa, nullptr, at_precision<EpaIn>},
     AlgorithmInfo{"sat", AnswerKind::boolean,
                   "separating axis test on exact hull features (face normals, edge cross "
                   "products) with the minimum-overlap depth",
@@ -473,8 +590,29 @@ std::invalid_argument polytopes_only(const AlgorithmInfo& algorithm) {
 
 }  // namespace
 
+bool takes_precision(const AlgorithmInfo& algorithm) {
+  return algorithm.run_at_precision != nullptr;
+}
+
+namespace {
+
+/// Whether the options ask for another precision than double; throws std::invalid_argument
+/// naming the algorithm when it cannot run in it.
+bool in_other_precision(const AlgorithmInfo& algorithm, const AlgorithmOptions& options) {
+  if (options.precision == ScalarPrecision::double_float) return false;
+  if (!takes_precision(algorithm))
+    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
+                                "' runs in double only, not in " +
+                                std::string(to_string(options.precision)));
+  return true;
+}
+
+}  // namespace
+
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                       const SweptRadii& radii, const AlgorithmOptions& options) {
+  if (in_other_precision(algorithm, options))
+    return algorithm.run_at_precision(a, b, radii, options, nullptr);
   if (!radii.any()) return algorithm.run(a, b, options);
   if (!algorithm.run_swept) throw polytopes_only(algorithm);
   return algorithm.run_swept(a, b, radii, options);
@@ -486,6 +624,8 @@ Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, 
   if (!can_trace(algorithm, radii))
     throw std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' cannot be traced" +
                                 (radii.any() ? " on sphere-swept shapes" : ""));
+  if (in_other_precision(algorithm, options))
+    return algorithm.run_at_precision(a, b, radii, options, &trace);
   if (!radii.any()) return algorithm.run_traced(a, b, options, trace);
   return algorithm.run_swept_traced(a, b, radii, options, trace);
 }
@@ -522,16 +662,18 @@ void count_query(BenchTally& t, long long iterations, long long support_calls, b
 void tally(BenchTally& t, const BooleanResult& r) {
   count_query(t, r.iterations, r.support_calls, r.intersect);
 }
-void tally(BenchTally& t, const DistanceResult& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect, r.distance);
+template <class T>
+void tally(BenchTally& t, const DistanceResultT<T>& r) {
+  count_query(t, r.iterations, r.support_calls, r.intersect, static_cast<double>(r.distance));
 }
 void tally(BenchTally& t, const PenetrationResult& r) {
   count_query(t, r.iterations, r.support_calls, r.intersect, r.intersect ? 0.0 : r.distance);
 }
-void tally(BenchTally& t, const EpaResult& r) {
+template <class T>
+void tally(BenchTally& t, const EpaResultT<T>& r) {
   // As run_epa: GJK's iterations, then EPA's.
   count_query(t, r.gjk_iterations + r.iterations, r.support_calls, r.intersect,
-              r.intersect ? 0.0 : r.distance);
+              r.intersect ? 0.0 : static_cast<double>(r.distance));
 }
 void tally(BenchTally& t, const peers::LibccdPenetration& r) {
   count_query(t, r.iterations, r.support_calls, r.intersect);
@@ -555,8 +697,38 @@ BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&&
   return t;
 }
 
+/// The loop of a GJK query in float or long double: the pairs are rounded to T before the
+/// timed loop (as the peers' prepared shapes), so the loop times the queries alone.
+template <class T, class Query>
+BenchTally rounded_bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
+  std::vector<std::pair<ScalarCloud<T>, ScalarCloud<T>>> clouds;
+  clouds.reserve(pairs.size());
+  for (const BenchPair& p : pairs)
+    clouds.emplace_back(ScalarCloud<T>(p.a->vertices()), ScalarCloud<T>(p.b->vertices()));
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r)
+    for (const auto& [a, b] : clouds)
+      tally(t, query(a, b));
+  return t;
+}
+
+/// A GJK query's loop in the precision of the options (`query` takes shapes of any scalar).
+template <class Query>
+BenchTally gjk_bench_loop(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps,
+                          Query&& query) {
+  switch (o.precision) {
+    case ScalarPrecision::single_float:
+      return rounded_bench_loop<float>(pairs, reps, query);
+    case ScalarPrecision::long_double:
+      return rounded_bench_loop<long double>(pairs, reps, query);
+    case ScalarPrecision::double_float:
+      break;
+  }
+  return bench_loop(pairs, reps, query);
+}
+
 BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
     return gjk_intersect(a, b, o.gjk_boolean);
   });
 }
@@ -564,27 +736,28 @@ BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptio
 template <class Sub>
 BenchTally bench_gjk_distance(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
                               int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
     return gjk_distance_with<Sub>(a, b, o.gjk_distance);
   });
 }
 
 BenchTally bench_gjk_nesterov(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
                               int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
     return gjk_nesterov(a, b, o.gjk_nesterov);
   });
 }
 
 BenchTally bench_gjk_polyak(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
     return gjk_polyak(a, b, o.gjk_distance);
   });
 }
 
 BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  EpaPolytope workspace;  // reused across the batch's queries, as run_epa's per thread
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
+    // Buffers reused across the batch's queries, as run_epa's per thread (one per precision).
+    thread_local EpaPolytopeT<shape_scalar_t<std::remove_cvref_t<decltype(a)>>> workspace;
     return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   });
 }

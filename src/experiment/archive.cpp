@@ -146,7 +146,8 @@ struct ArchiveWriter::Impl {
   struct AlgorithmColumns {
     h5::Column intersect, distance, abs_error, rel_error, boolean_correct, iterations,
         support_calls, termination, time_ns, failure, depth, depth_abs_error, depth_rel_error,
-        witness_a, witness_b, witness_error_a, witness_error_b, witness_distance_error;
+        witness_a, witness_b, witness_error_a, witness_error_b, witness_distance_error,
+        rounded_exact_distance, rounded_exact_depth;
   };
   struct GeometryColumns {
     h5::Column case_id, a_offset, a_count, b_offset, b_count, vertices_a, vertices_b;
@@ -182,11 +183,26 @@ struct ArchiveWriter::Impl {
                                &exact->hull_vertices_b, &exact->contact, &exact->method,
                                &exact->depth_method});
       for (AlgorithmColumns& a : algorithms)
-        all.insert(all.end(),
-                   {&a.intersect, &a.distance, &a.abs_error, &a.rel_error, &a.boolean_correct,
-                    &a.iterations, &a.support_calls, &a.termination, &a.time_ns, &a.failure,
-                    &a.depth, &a.depth_abs_error, &a.depth_rel_error, &a.witness_a, &a.witness_b,
-                    &a.witness_error_a, &a.witness_error_b, &a.witness_distance_error});
+        all.insert(all.end(), {&a.intersect,
+                               &a.distance,
+                               &a.abs_error,
+                               &a.rel_error,
+                               &a.boolean_correct,
+                               &a.iterations,
+                               &a.support_calls,
+                               &a.termination,
+                               &a.time_ns,
+                               &a.failure,
+                               &a.depth,
+                               &a.depth_abs_error,
+                               &a.depth_rel_error,
+                               &a.witness_a,
+                               &a.witness_b,
+                               &a.witness_error_a,
+                               &a.witness_error_b,
+                               &a.witness_distance_error,
+                               &a.rounded_exact_distance,
+                               &a.rounded_exact_depth});
       for (TraceColumns& t : traces)
         for (h5::Column* c : t.all())
           all.push_back(c);
@@ -386,6 +402,8 @@ void ArchiveWriter::Impl::create(const ArchiveHeader& h) {
           column(gi, p, "witness_error_a", f64f, f64m, chunk),
           column(gi, p, "witness_error_b", f64f, f64m, chunk),
           column(gi, p, "witness_distance_error", f64f, f64m, chunk),
+          column(gi, p, "rounded_exact_distance", f64f, f64m, chunk),
+          column(gi, p, "rounded_exact_depth", f64f, f64m, chunk),
       });
     }
   }
@@ -490,6 +508,10 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
     a.witness_error_b.append(cx, gather<double>(rs, [&](R r) { return alg(r).witness_error_b; }));
     a.witness_distance_error.append(
         cx, gather<double>(rs, [&](R r) { return alg(r).witness_distance_error; }));
+    a.rounded_exact_distance.append(
+        cx, gather<double>(rs, [&](R r) { return alg(r).rounded_exact_distance; }));
+    a.rounded_exact_depth.append(
+        cx, gather<double>(rs, [&](R r) { return alg(r).rounded_exact_depth; }));
   }
   {
     GeometryColumns& g = c.geometry;
@@ -958,6 +980,14 @@ Archive read_archive(const fs::path& path) {
       const auto witness_error_b = h5::read_column<double>(cx, gi, p, "witness_error_b", f64m, n);
       const auto witness_distance_error =
           h5::read_column<double>(cx, gi, p, "witness_distance_error", f64m, n);
+      // Archives written before the precision option have no such columns: NaN (double).
+      auto optional_column = [&](const char* name) {
+        return h5::has_link(cx, gi, p, name)
+                   ? h5::read_column<double>(cx, gi, p, name, f64m, n)
+                   : std::vector<double>(n, std::numeric_limits<double>::quiet_NaN());
+      };
+      const auto rounded_exact_distance = optional_column("rounded_exact_distance");
+      const auto rounded_exact_depth = optional_column("rounded_exact_depth");
       for (std::size_t i = 0; i < n; ++i) {
         AlgorithmRecord& ar = a.results[i].algorithms[k];
         ar.intersect = intersect[i] != 0;
@@ -978,6 +1008,8 @@ Archive read_archive(const fs::path& path) {
         ar.witness_error_a = witness_error_a[i];
         ar.witness_error_b = witness_error_b[i];
         ar.witness_distance_error = witness_distance_error[i];
+        ar.rounded_exact_distance = rounded_exact_distance[i];
+        ar.rounded_exact_depth = rounded_exact_depth[i];
       }
     }
   }

@@ -258,6 +258,8 @@ struct Entry {
   const AlgorithmInfo* info = nullptr;
   bool hill_climbing = false;
   BenchLoop loop = nullptr;  ///< nullptr: through the registry
+  /// The precision of the query (BenchConfig::precision for the queries that take one).
+  ScalarPrecision precision = ScalarPrecision::double_float;
 };
 
 bool is_peer(std::string_view name) {
@@ -290,7 +292,9 @@ double seconds_since(Clock::time_point start) {
 volatile double g_sink = 0;
 
 BenchTally run_loop(const Entry& e, std::span<const BenchPair> pairs,
-                    const AlgorithmOptions& options, int repetitions) {
+                    const AlgorithmOptions& shared_options, int repetitions) {
+  AlgorithmOptions options = shared_options;  // per batch, not per query
+  options.precision = e.precision;
   BenchTally t = e.loop ? e.loop(pairs, options, repetitions)
                         : run_bench_loop_via_registry(*e.info, pairs, options, repetitions);
   g_sink = g_sink + t.distance_sum + static_cast<double>(t.iterations);
@@ -615,6 +619,19 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
     if (!report.boolean_reference.empty())
       report.notes.push_back("boolean algorithms: ratios to " + report.boolean_reference);
   }
+  const bool other_precision = config.precision != ScalarPrecision::double_float;
+  if (other_precision) {
+    for (Entry& e : entries) {
+      if (!takes_precision(*e.info)) continue;
+      if (e.hill_climbing)
+        throw BenchError(e.name + ": hill climbing runs in double only, not in " +
+                         std::string(to_string(config.precision)));
+      e.precision = config.precision;
+    }
+    report.notes.push_back("GJK queries (gjk-bool, the distance variants, epa) in " +
+                           std::string(to_string(config.precision)) +
+                           ", on inputs rounded before the timed loop; peers in double");
+  }
   for (const Entry& e : entries)
     if (e.loop == nullptr)
       report.notes.push_back(e.name +
@@ -627,7 +644,7 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
   for (const std::string& suite : config.suites) {
     std::vector<Entry> suite_entries = entries;
     // Default list: the random suite also measures hill climbing on the GJK queries.
-    if (default_list && suite == "random")
+    if (default_list && suite == "random" && !other_precision)
       for (const char* n : {"gjk-bool+hc", "gjk-johnson+hc"})
         if (!present(n)) suite_entries.push_back(make_entry(n));
     const bool hc = std::any_of(suite_entries.begin(), suite_entries.end(),
@@ -859,8 +876,8 @@ BenchConfig load_bench_config(const std::string& path) {
   for (const auto& [key, node] : t) {
     (void)node;
     static const std::set<std::string> known = {
-        "suites",         "algorithms", "reference", "samples",   "batch_seconds",
-        "configurations", "seed",       "cases",     "published", "description"};
+        "suites", "algorithms", "reference", "samples",     "batch_seconds", "configurations",
+        "seed",   "cases",      "published", "description", "precision"};
     if (!known.count(std::string(key.str()))) fail("unknown key '" + std::string(key.str()) + "'");
   }
   // Every value checked for its type and range (the command line's ranges): a value of the
@@ -882,6 +899,13 @@ BenchConfig load_bench_config(const std::string& path) {
   };
   text("reference", c.reference);
   text("cases", c.case_filter);
+  std::string precision;
+  text("precision", precision);
+  if (!precision.empty()) {
+    const auto p = precision_from_string(precision);
+    if (!p) fail("precision must be \"float\", \"double\" or \"long double\"");
+    c.precision = *p;
+  }
   if (auto v = integer("samples", 1, 100000)) c.samples = static_cast<int>(*v);
   if (auto v = integer("configurations", 1, 100000)) c.configurations = static_cast<int>(*v);
   if (auto v = integer("seed", 0, std::numeric_limits<std::int64_t>::max()))

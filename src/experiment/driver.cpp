@@ -49,6 +49,65 @@ double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polyt
   return median(std::move(ns));
 }
 
+/// A value rounded to the precision and back to double (exact both ways for float; long
+/// double holds every double, so that precision changes nothing).
+double rounded_to(ScalarPrecision p, double x) {
+  return p == ScalarPrecision::single_float ? static_cast<double>(static_cast<float>(x)) : x;
+}
+
+/// The exact answers of a case's pair as the queries in other precisions see it (clouds and
+/// radii rounded to the precision): long double holds every double, so its inputs are the
+/// case's own; float's are computed once per case through the certificates (an O(n) check of
+/// gjk-johnson's and EPA's answers, the QP only where none holds).
+class RoundedExact {
+ public:
+  /// Distance and depth (NaN where the pair does not intersect or when not computed).
+  struct Answer {
+    double distance = std::numeric_limits<double>::quiet_NaN();
+    double depth = std::numeric_limits<double>::quiet_NaN();
+  };
+
+  RoundedExact(const ExperimentConfig& config, std::span<const Vec3> a, std::span<const Vec3> b,
+               const SweptRadii& radii, const std::optional<exact::OracleAnswer>& exact)
+      : config_(config), a_(a), b_(b), radii_(radii), exact_(exact) {}
+
+  /// NaN where the rounded clouds are not valid polytopes (coordinates beyond float's range).
+  Answer answer(ScalarPrecision p) {
+    if (p != ScalarPrecision::single_float) {
+      if (exact_ && !(exact_->intersect && !exact_->depth))
+        return {exact_->distance, exact_->depth.value_or(std::numeric_limits<double>::quiet_NaN())};
+      if (!same_inputs_) same_inputs_ = solve(ScalarPrecision::long_double);
+      return *same_inputs_;
+    }
+    if (!in_float_) in_float_ = solve(ScalarPrecision::single_float);
+    return *in_float_;
+  }
+
+ private:
+  /// The exact answer, with the depth of an intersecting pair, of the inputs rounded to p.
+  Answer solve(ScalarPrecision p) const {
+    auto rounded = [&](std::span<const Vec3> cloud) {
+      std::vector<Vec3> out;
+      out.reserve(cloud.size());
+      for (const Vec3& x : cloud)
+        out.emplace_back(rounded_to(p, x.x()), rounded_to(p, x.y()), rounded_to(p, x.z()));
+      return out;
+    };
+    const std::vector<Vec3> ra = rounded(a_), rb = rounded(b_);
+    if (!describe_invalid_cloud(ra).empty() || !describe_invalid_cloud(rb).empty()) return {};
+    const SweptRadii r{rounded_to(p, radii_.a), rounded_to(p, radii_.b)};
+    const exact::OracleAnswer e =
+        solve_certified(Polytope(ra), Polytope(rb), r, config_.oracle_options(true)).answer;
+    return {e.distance, e.depth.value_or(std::numeric_limits<double>::quiet_NaN())};
+  }
+
+  const ExperimentConfig& config_;
+  std::span<const Vec3> a_, b_;
+  SweptRadii radii_;
+  const std::optional<exact::OracleAnswer>& exact_;
+  std::optional<Answer> same_inputs_, in_float_;
+};
+
 class Progress {
  public:
   Progress(std::ostream* out, bool live, std::uint64_t total)
@@ -136,11 +195,17 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
     result.exact = exact_record(*answer, band);
   }
   std::vector<Outcome> outcomes;
+  RoundedExact rounded_exact(config, generated.a, generated.b, radii, answer);
   for (const AlgorithmSpec& spec : config.algorithms) {
     const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
     outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options));
     result.algorithms.push_back(algorithm_record(outcomes.back()));
     if (result.exact) judge(result.algorithms.back(), outcomes.back(), *result.exact, size);
+    if (result.exact && spec.options.precision != ScalarPrecision::double_float) {
+      const RoundedExact::Answer rounded = rounded_exact.answer(spec.options.precision);
+      result.algorithms.back().rounded_exact_distance = rounded.distance;
+      result.algorithms.back().rounded_exact_depth = rounded.depth;
+    }
     add_witnesses(result.algorithms.back(), outcomes.back(), answer ? &*answer : nullptr,
                   generated.a, generated.b);
     if (config.timing)

@@ -6,7 +6,8 @@
 
 namespace gjklab {
 
-void EpaPolytope::prepare(int max_steps, int max_faces) {
+template <class T>
+void EpaPolytopeT<T>::prepare(int max_steps, int max_faces) {
   const std::size_t vertex_capacity = 4 + static_cast<std::size_t>(max_steps);
   const std::size_t face_capacity = static_cast<std::size_t>(max_faces);
   vertices.clear();
@@ -23,17 +24,19 @@ void EpaPolytope::prepare(int max_steps, int max_faces) {
   alive_ = 0;
 }
 
-bool EpaPolytope::plane(int i, int j, int l, Vec3& normal, double& distance) const {
-  const Vec3& pi = vertices[i].w;
-  const Vec3 n = (vertices[j].w - pi).cross(vertices[l].w - pi);
-  const double len = n.norm();
+template <class T>
+bool EpaPolytopeT<T>::plane(int i, int j, int l, Vec3T<T>& normal, T& distance) const {
+  const Vec3T<T>& pi = vertices[i].w;
+  const Vec3T<T> n = (vertices[j].w - pi).cross(vertices[l].w - pi);
+  const T len = n.norm();
   if (!(len > 0) || !std::isfinite(len)) return false;
   normal = n / len;
   distance = normal.dot(pi);
   return std::isfinite(distance);
 }
 
-int EpaPolytope::allocate_face() {
+template <class T>
+int EpaPolytopeT<T>::allocate_face() {
   if (!free_faces_.empty()) {
     const int f = free_faces_.back();
     free_faces_.pop_back();
@@ -43,14 +46,15 @@ int EpaPolytope::allocate_face() {
   return static_cast<int>(faces.size()) - 1;
 }
 
-bool EpaPolytope::start_tetrahedron(const std::array<SimplexVertex, 4>& p) {
-  for (const SimplexVertex& v : p)
+template <class T>
+bool EpaPolytopeT<T>::start_tetrahedron(const std::array<SimplexVertexT<T>, 4>& p) {
+  for (const SimplexVertexT<T>& v : p)
     vertices.push_back(v);
-  const Vec3 centroid = 0.25 * (p[0].w + p[1].w + p[2].w + p[3].w);
+  const Vec3T<T> centroid = T(0.25) * (p[0].w + p[1].w + p[2].w + p[3].w);
   std::array<std::array<int, 3>, 4> tri = {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}};
   for (auto& t : tri) {
-    const Vec3& p0 = vertices[t[0]].w;
-    const Vec3 n = (vertices[t[1]].w - p0).cross(vertices[t[2]].w - p0);
+    const Vec3T<T>& p0 = vertices[t[0]].w;
+    const Vec3T<T> n = (vertices[t[1]].w - p0).cross(vertices[t[2]].w - p0);
     if (n.dot(centroid - p0) > 0) std::swap(t[1], t[2]);  // make the normal point outward
   }
   for (const auto& t : tri) {
@@ -75,20 +79,23 @@ bool EpaPolytope::start_tetrahedron(const std::array<SimplexVertex, 4>& p) {
   return true;
 }
 
-int EpaPolytope::closest_face() const {
+template <class T>
+int EpaPolytopeT<T>::closest_face() const {
   int closest = -1;
   for (int f = 0; f < static_cast<int>(faces.size()); ++f)
     if (faces[f].alive && (closest < 0 || faces[f].distance < faces[closest].distance)) closest = f;
   return closest;
 }
 
-bool EpaPolytope::has_vertex(const Vec3& w) const {
-  for (const SimplexVertex& v : vertices)
+template <class T>
+bool EpaPolytopeT<T>::has_vertex(const Vec3T<T>& w) const {
+  for (const SimplexVertexT<T>& v : vertices)
     if (v.w == w) return true;
   return false;
 }
 
-int EpaPolytope::mark_visible(int seed, const Vec3& w, double plane_slack, int step) {
+template <class T>
+int EpaPolytopeT<T>::mark_visible(int seed, const Vec3T<T>& w, T plane_slack, int step) {
   auto sees = [&](const Face& f) { return f.normal.dot(w) - f.distance >= -plane_slack; };
   stack_.clear();
   horizon_.clear();
@@ -118,12 +125,14 @@ int EpaPolytope::mark_visible(int seed, const Vec3& w, double plane_slack, int s
   return visible;
 }
 
-bool EpaPolytope::cone_fits(int visible, int max_faces) const {
+template <class T>
+bool EpaPolytopeT<T>::cone_fits(int visible, int max_faces) const {
   const int h_count = static_cast<int>(horizon_.size());
   return vertices.size() < edge_from_.size() && alive_ - visible + h_count <= max_faces;
 }
 
-bool EpaPolytope::link_horizon() {
+template <class T>
+bool EpaPolytopeT<T>::link_horizon() {
   const int h_count = static_cast<int>(horizon_.size());
   bool simple = h_count >= 3;
   for (int i = 0; i < h_count && simple; ++i) {
@@ -154,7 +163,8 @@ bool EpaPolytope::link_horizon() {
   return simple;
 }
 
-bool EpaPolytope::add_cone(const SimplexVertex& w, int step, double lower_bound, double slack) {
+template <class T>
+bool EpaPolytopeT<T>::add_cone(const SimplexVertexT<T>& w, int step, T lower_bound, T slack) {
   // New faces (from, to, w): check them all before changing the polytope.
   const int wi = static_cast<int>(vertices.size());
   vertices.push_back(w);
@@ -190,5 +200,9 @@ bool EpaPolytope::add_cone(const SimplexVertex& w, int step, double lower_bound,
   alive_ += static_cast<int>(horizon_.size());
   return true;
 }
+
+template class EpaPolytopeT<float>;
+template class EpaPolytopeT<double>;
+template class EpaPolytopeT<long double>;
 
 }  // namespace gjklab

@@ -7,25 +7,30 @@ namespace gjklab::detail {
 namespace {
 
 /// x and y point into the same open half-space.
-bool same_side(const Vec3& x, const Vec3& y) {
+template <class T>
+bool same_side(const Vec3T<T>& x, const Vec3T<T>& y) {
   return x.dot(y) > 0;
 }
 
 /// Direction perpendicular to edge e, in the plane of e and the origin offset o, towards o.
-Vec3 towards_origin_from_edge(const Vec3& e, const Vec3& o) {
+template <class T>
+Vec3T<T> towards_origin_from_edge(const Vec3T<T>& e, const Vec3T<T>& o) {
   return e.cross(o).cross(e);
 }
 
-void set(BooleanSimplex& s, const Vec3& p0) {
+template <class T>
+void set(BooleanSimplexT<T>& s, const Vec3T<T>& p0) {
   s.points[0] = p0;
   s.size = 1;
 }
-void set(BooleanSimplex& s, const Vec3& p0, const Vec3& p1) {
+template <class T>
+void set(BooleanSimplexT<T>& s, const Vec3T<T>& p0, const Vec3T<T>& p1) {
   s.points[0] = p0;
   s.points[1] = p1;
   s.size = 2;
 }
-void set(BooleanSimplex& s, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+template <class T>
+void set(BooleanSimplexT<T>& s, const Vec3T<T>& p0, const Vec3T<T>& p1, const Vec3T<T>& p2) {
   s.points[0] = p0;
   s.points[1] = p1;
   s.points[2] = p2;
@@ -34,22 +39,25 @@ void set(BooleanSimplex& s, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
 
 /// Relative size, in units of the rounding error, below which the triple product of an edge
 /// and the origin offset is noise: |(ab × ao) × ab| ≤ this · ε · ‖ab‖² · ‖ao‖ (each of the
-/// two cross products rounds with a relative error of a few ε).
-constexpr double kCollinearNoise = 16 * std::numeric_limits<double>::epsilon();
+/// two cross products rounds with a relative error of a few ε; ε of the query's precision).
+template <class T>
+constexpr T kCollinearNoise = 16 * std::numeric_limits<T>::epsilon();
 
 /// The origin lies on segment ab's line within rounding, between a and b: the segment, a part
 /// of A − B, holds the origin up to rounding (the shapes touch or overlap). The noise test
 /// comes first and on squared lengths (no square root): it fails on nearly every call.
-bool origin_on_segment(const Vec3& a, const Vec3& b, const Vec3& towards_origin) {
-  const Vec3 ab = b - a;
-  const double noise_over_a = kCollinearNoise * ab.squaredNorm();  // noise / ‖a‖
+template <class T>
+bool origin_on_segment(const Vec3T<T>& a, const Vec3T<T>& b, const Vec3T<T>& towards_origin) {
+  const Vec3T<T> ab = b - a;
+  const T noise_over_a = kCollinearNoise<T> * ab.squaredNorm();  // noise / ‖a‖
   return towards_origin.squaredNorm() <= noise_over_a * noise_over_a * a.squaredNorm() &&
-         same_side(ab, -a) && same_side(a - b, -b);
+         same_side<T>(ab, -a) && same_side<T>(a - b, -b);
 }
 
-bool segment_case(BooleanSimplex& s, Vec3& d) {
-  const Vec3 a = s.points[0], b = s.points[1];
-  const Vec3 ab = b - a, ao = -a;
+template <class T>
+bool segment_case(BooleanSimplexT<T>& s, Vec3T<T>& d) {
+  const Vec3T<T> a = s.points[0], b = s.points[1];
+  const Vec3T<T> ab = b - a, ao = -a;
   if (same_side(ab, ao)) {
     d = towards_origin_from_edge(ab, ao);
     // Without this, an origin on the line (e.g. from the centre start on a shape symmetric
@@ -62,10 +70,11 @@ bool segment_case(BooleanSimplex& s, Vec3& d) {
   return false;
 }
 
-bool triangle_case(BooleanSimplex& s, Vec3& d) {
-  const Vec3 a = s.points[0], b = s.points[1], c = s.points[2];
-  const Vec3 ab = b - a, ac = c - a, ao = -a;
-  const Vec3 abc = ab.cross(ac);
+template <class T>
+bool triangle_case(BooleanSimplexT<T>& s, Vec3T<T>& d) {
+  const Vec3T<T> a = s.points[0], b = s.points[1], c = s.points[2];
+  const Vec3T<T> ab = b - a, ac = c - a, ao = -a;
+  const Vec3T<T> abc = ab.cross(ac);
   if (same_side(abc.cross(ac), ao)) {
     if (same_side(ac, ao)) {
       set(s, a, c);
@@ -90,9 +99,10 @@ bool triangle_case(BooleanSimplex& s, Vec3& d) {
   return false;
 }
 
-bool tetrahedron_case(BooleanSimplex& s, Vec3& d) {
-  const Vec3 a = s.points[0], b = s.points[1], c = s.points[2], e = s.points[3];
-  const Vec3 ab = b - a, ac = c - a, ae = e - a, ao = -a;
+template <class T>
+bool tetrahedron_case(BooleanSimplexT<T>& s, Vec3T<T>& d) {
+  const Vec3T<T> a = s.points[0], b = s.points[1], c = s.points[2], e = s.points[3];
+  const Vec3T<T> ab = b - a, ac = c - a, ae = e - a, ao = -a;
   if (same_side(ab.cross(ac), ao)) {
     set(s, a, b, c);
     return triangle_case(s, d);
@@ -110,7 +120,8 @@ bool tetrahedron_case(BooleanSimplex& s, Vec3& d) {
 
 }  // namespace
 
-bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction) {
+template <class T>
+bool boolean_gjk_step(BooleanSimplexT<T>& simplex, Vec3T<T>& direction) {
   switch (simplex.size) {
     case 2:
       return segment_case(simplex, direction);
@@ -120,5 +131,9 @@ bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction) {
       return tetrahedron_case(simplex, direction);
   }
 }
+
+template bool boolean_gjk_step(BooleanSimplexT<float>&, Vec3T<float>&);
+template bool boolean_gjk_step(BooleanSimplexT<double>&, Vec3T<double>&);
+template bool boolean_gjk_step(BooleanSimplexT<long double>&, Vec3T<long double>&);
 
 }  // namespace gjklab::detail

@@ -24,9 +24,10 @@ constexpr int first_index(std::uint8_t mask) {
 
 /// Cofactor storage without zero-initialisation, for closest_point: it reads only entries that
 /// fill_cofactors wrote (Δ_i(X) with i ∈ X ⊆ {0 … N−1}).
+template <class T>
 struct UninitialisedCofactors {
-  double delta[16][4];
-  double total[16];
+  T delta[16][4];
+  T total[16];
 };
 
 // Each cofactor sum (and Δ(X)) starts from its first term instead of 0 + it. The two differ
@@ -34,28 +35,28 @@ struct UninitialisedCofactors {
 // tests compare cofactors with 0, the weights divide positive ones, and a zero of either sign
 // times anything finite stays zero in every sum it enters. It saves one add per cofactor.
 
-template <int N, class Cofactors>
-[[gnu::always_inline]] inline void fill_cofactors(const std::array<Vec3, 4>& y, Cofactors& c) {
+template <int N, class T, class Cofactors>
+[[gnu::always_inline]] inline void fill_cofactors(const std::array<Vec3T<T>, 4>& y, Cofactors& c) {
   constexpr std::uint8_t all = static_cast<std::uint8_t>((1u << N) - 1);
 #pragma GCC unroll 16
   for (std::uint8_t x : kSubsetsBySize) {
     if ((x & all) != x) continue;
     if (std::popcount(static_cast<unsigned>(x)) == 1) {
-      c.delta[x][first_index(x)] = 1.0;
-      c.total[x] = 1.0;
+      c.delta[x][first_index(x)] = T(1);
+      c.total[x] = T(1);
       continue;
     }
     // Build Δ_j(X) from the subset X' = X \ {j} for each j ∈ X. X' has one point fewer and
     // was filled earlier because the order is by size.
-    double total = 0;
+    T total = 0;
 #pragma GCC unroll 4
     for (int j = 0; j < N; ++j) {
       if (!(x & (1u << j))) continue;
       const std::uint8_t rest = static_cast<std::uint8_t>(x & ~(1u << j));
       const int k = first_index(rest);
-      const Vec3 edge = y[k] - y[j];  // differences first: better than subtracting dot products
+      const Vec3T<T> edge = y[k] - y[j];  // differences first: better than subtracting dot products
       // The sum starts from its first term, not from 0 + it (see the note above).
-      double dj = c.delta[rest][k] * edge.dot(y[k]);
+      T dj = c.delta[rest][k] * edge.dot(y[k]);
 #pragma GCC unroll 4
       for (int i = k + 1; i < N; ++i)
         if (rest & (1u << i)) dj += c.delta[rest][i] * edge.dot(y[i]);
@@ -78,12 +79,12 @@ template <int N, class Cofactors>
   return true;
 }
 
-template <int N>
-JohnsonSolution closest_point(const std::array<Vec3, 4>& y) {
-  UninitialisedCofactors c;
-  fill_cofactors<N>(y, c);
+template <int N, class T>
+JohnsonSolutionT<T> closest_point(const std::array<Vec3T<T>, 4>& y) {
+  UninitialisedCofactors<T> c;
+  fill_cofactors<N, T>(y, c);
   constexpr std::uint8_t all = static_cast<std::uint8_t>((1u << N) - 1);
-  JohnsonSolution s;
+  JohnsonSolutionT<T> s;
 #pragma GCC unroll 16
   for (std::uint8_t x : kSubsetsBySize) {
     if ((x & all) != x || !subset_is_valid<N>(c, x)) continue;
@@ -102,20 +103,21 @@ JohnsonSolution closest_point(const std::array<Vec3, 4>& y) {
 
 }  // namespace
 
-JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
-  JohnsonCofactors c;
+template <class T>
+JohnsonCofactorsT<T> johnson_cofactors(const std::array<Vec3T<T>, 4>& y, int count) {
+  JohnsonCofactorsT<T> c;
   switch (count) {
     case 1:
-      fill_cofactors<1>(y, c);
+      fill_cofactors<1, T>(y, c);
       break;
     case 2:
-      fill_cofactors<2>(y, c);
+      fill_cofactors<2, T>(y, c);
       break;
     case 3:
-      fill_cofactors<3>(y, c);
+      fill_cofactors<3, T>(y, c);
       break;
     case 4:
-      fill_cofactors<4>(y, c);
+      fill_cofactors<4, T>(y, c);
       break;
     default:
       break;  // no points: no subsets
@@ -123,7 +125,8 @@ JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count) {
   return c;
 }
 
-bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count) {
+template <class T>
+bool johnson_subset_is_valid(const JohnsonCofactorsT<T>& c, std::uint8_t subset, int count) {
   switch (count) {
     case 1:
       return subset_is_valid<1>(c, subset);
@@ -138,16 +141,17 @@ bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int
   }
 }
 
-JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
+template <class T>
+JohnsonSolutionT<T> johnson_closest_point(const std::array<Vec3T<T>, 4>& y, int count) {
   switch (count) {
     case 1:
-      return closest_point<1>(y);
+      return closest_point<1, T>(y);
     case 2:
-      return closest_point<2>(y);
+      return closest_point<2, T>(y);
     case 3:
-      return closest_point<3>(y);
+      return closest_point<3, T>(y);
     case 4:
-      return closest_point<4>(y);
+      return closest_point<4, T>(y);
     default:
       return {};  // no points: nothing found
   }
@@ -156,9 +160,10 @@ JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count) {
 namespace {
 
 /// The solution for subset X: λ_i = Δ_i(X)/Δ(X) and v = Σ λ_i y_i.
-JohnsonSolution solution_of(const JohnsonCofactors& c, const std::array<Vec3, 4>& y, int count,
-                            std::uint8_t x) {
-  JohnsonSolution s;
+template <class T>
+JohnsonSolutionT<T> solution_of(const JohnsonCofactorsT<T>& c, const std::array<Vec3T<T>, 4>& y,
+                                int count, std::uint8_t x) {
+  JohnsonSolutionT<T> s;
   s.found = true;
   s.subset = x;
   for (int i = 0; i < count; ++i) {
@@ -171,7 +176,8 @@ JohnsonSolution solution_of(const JohnsonCofactors& c, const std::array<Vec3, 4>
 
 }  // namespace
 
-bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8_t subset,
+template <class T>
+bool johnson_subset_has_positive_cofactors(const JohnsonCofactorsT<T>& c, std::uint8_t subset,
                                            int count) {
   if (!(c.total[subset] > 0)) return false;
   for (int i = 0; i < count; ++i)
@@ -179,9 +185,10 @@ bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8
   return true;
 }
 
-JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, int count,
-                                                  bool* used_backup) {
-  const JohnsonCofactors c = johnson_cofactors(y, count);
+template <class T>
+JohnsonSolutionT<T> johnson_closest_point_with_backup(const std::array<Vec3T<T>, 4>& y, int count,
+                                                      bool* used_backup) {
+  const JohnsonCofactorsT<T> c = johnson_cofactors(y, count);
   const std::uint8_t all = static_cast<std::uint8_t>((1u << count) - 1);
   if (used_backup) *used_backup = false;
   for (std::uint8_t x : kSubsetsBySize) {
@@ -191,15 +198,28 @@ JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, 
   // Backup procedure: every subset whose affine closest point lies inside its hull by the
   // cofactors' signs is a candidate; the one whose point is nearest the origin wins.
   if (used_backup) *used_backup = true;
-  JohnsonSolution best;
-  double best_norm = 0;
+  JohnsonSolutionT<T> best;
+  T best_norm = 0;
   for (std::uint8_t x : kSubsetsBySize) {
     if ((x & all) != x || !johnson_subset_has_positive_cofactors(c, x, count)) continue;
-    const JohnsonSolution candidate = solution_of(c, y, count, x);
-    const double norm = candidate.closest.squaredNorm();
+    const JohnsonSolutionT<T> candidate = solution_of(c, y, count, x);
+    const T norm = candidate.closest.squaredNorm();
     if (!best.found || norm < best_norm) best = candidate, best_norm = norm;
   }
   return best;
 }
+
+#define GJKLAB_JOHNSON_FOR(T)                                                                    \
+  template JohnsonCofactorsT<T> johnson_cofactors(const std::array<Vec3T<T>, 4>&, int);          \
+  template bool johnson_subset_is_valid(const JohnsonCofactorsT<T>&, std::uint8_t, int);         \
+  template bool johnson_subset_has_positive_cofactors(const JohnsonCofactorsT<T>&, std::uint8_t, \
+                                                      int);                                      \
+  template JohnsonSolutionT<T> johnson_closest_point(const std::array<Vec3T<T>, 4>&, int);       \
+  template JohnsonSolutionT<T> johnson_closest_point_with_backup(const std::array<Vec3T<T>, 4>&, \
+                                                                 int, bool*);
+GJKLAB_JOHNSON_FOR(float)
+GJKLAB_JOHNSON_FOR(double)
+GJKLAB_JOHNSON_FOR(long double)
+#undef GJKLAB_JOHNSON_FOR
 
 }  // namespace gjklab

@@ -6,8 +6,9 @@ namespace gjklab {
 
 namespace {
 
-SubsimplexSolution single_point(const std::array<Vec3, 4>& y, int i) {
-  SubsimplexSolution s;
+template <class T>
+SubsimplexSolutionT<T> single_point(const std::array<Vec3T<T>, 4>& y, int i) {
+  SubsimplexSolutionT<T> s;
   s.found = true;
   s.subset = static_cast<std::uint8_t>(1u << i);
   s.weights[i] = 1;
@@ -16,8 +17,9 @@ SubsimplexSolution single_point(const std::array<Vec3, 4>& y, int i) {
 }
 
 /// y_i + t (y_j − y_i): weights 1 − t and t.
-SubsimplexSolution on_edge(const std::array<Vec3, 4>& y, int i, int j, double t) {
-  SubsimplexSolution s;
+template <class T>
+SubsimplexSolutionT<T> on_edge(const std::array<Vec3T<T>, 4>& y, int i, int j, T t) {
+  SubsimplexSolutionT<T> s;
   s.found = true;
   s.subset = static_cast<std::uint8_t>((1u << i) | (1u << j));
   s.weights[i] = 1 - t;
@@ -27,17 +29,20 @@ SubsimplexSolution on_edge(const std::array<Vec3, 4>& y, int i, int j, double t)
 }
 
 /// The candidate nearer to the origin; the first one on ties (and when the second is NaN).
-const SubsimplexSolution& nearer(const SubsimplexSolution& best, const SubsimplexSolution& c) {
+template <class T>
+const SubsimplexSolutionT<T>& nearer(const SubsimplexSolutionT<T>& best,
+                                     const SubsimplexSolutionT<T>& c) {
   if (!best.found) return c;
   return c.closest.squaredNorm() < best.closest.squaredNorm() ? c : best;
 }
 
 /// Closest point of segment y_i y_j (Ericson 5.1.2, query point at the origin).
-SubsimplexSolution segment(const std::array<Vec3, 4>& y, int i, int j) {
-  const Vec3 ab = y[j] - y[i];
-  const double t = (-y[i]).dot(ab);
+template <class T>
+SubsimplexSolutionT<T> segment(const std::array<Vec3T<T>, 4>& y, int i, int j) {
+  const Vec3T<T> ab = y[j] - y[i];
+  const T t = (-y[i]).dot(ab);
   if (t <= 0) return single_point(y, i);
-  const double denom = ab.dot(ab);
+  const T denom = ab.dot(ab);
   if (t >= denom) return single_point(y, j);
   return on_edge(y, i, j, t / denom);
 }
@@ -45,46 +50,47 @@ SubsimplexSolution segment(const std::array<Vec3, 4>& y, int i, int j) {
 /// Closest point of triangle a = y_i, b = y_j, c = y_k (Ericson 5.1.5, ClosestPtPointTriangle,
 /// query point at the origin). Edge regions of zero-length edges are skipped, and a face case
 /// without a positive area falls back to the three edges.
-SubsimplexSolution triangle(const std::array<Vec3, 4>& y, int i, int j, int k) {
-  const Vec3 &a = y[i], &b = y[j], &c = y[k];
-  const Vec3 ab = b - a, ac = c - a;
+template <class T>
+SubsimplexSolutionT<T> triangle(const std::array<Vec3T<T>, 4>& y, int i, int j, int k) {
+  const Vec3T<T>&a = y[i], &b = y[j], &c = y[k];
+  const Vec3T<T> ab = b - a, ac = c - a;
   // Vertex region of a.
-  const Vec3 ap = -a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  const Vec3T<T> ap = -a;
+  const T d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return single_point(y, i);
   // Vertex region of b.
-  const Vec3 bp = -b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  const Vec3T<T> bp = -b;
+  const T d3 = ab.dot(bp), d4 = ac.dot(bp);
   if (d3 >= 0 && d4 <= d3) return single_point(y, j);
   // Edge region of ab (d1 − d3 = ‖ab‖²).
-  const double vc = d1 * d4 - d3 * d2;
+  const T vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) return on_edge(y, i, j, d1 / (d1 - d3));
   // Vertex region of c.
-  const Vec3 cp = -c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  const Vec3T<T> cp = -c;
+  const T d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d6 >= 0 && d5 <= d6) return single_point(y, k);
   // Edge region of ac (d2 − d6 = ‖ac‖²).
-  const double vb = d5 * d2 - d1 * d6;
+  const T vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) return on_edge(y, i, k, d2 / (d2 - d6));
   // Edge region of bc ((d4 − d3) + (d5 − d6) = ‖bc‖²).
-  const double va = d3 * d6 - d5 * d4;
-  const double e4 = d4 - d3, e5 = d5 - d6;
+  const T va = d3 * d6 - d5 * d4;
+  const T e4 = d4 - d3, e5 = d5 - d6;
   if (va <= 0 && e4 >= 0 && e5 >= 0 && e4 + e5 > 0) return on_edge(y, j, k, e4 / (e4 + e5));
   // Face region: barycentric weights (va, vb, vc) / (va + vb + vc).
-  const double sum = va + vb + vc;
+  const T sum = va + vb + vc;
   if (!(sum > 0)) {
     if (std::isnan(sum)) {  // let the caller see the NaN
-      SubsimplexSolution s = single_point(y, i);
-      s.closest = Vec3::Constant(sum);
+      SubsimplexSolutionT<T> s = single_point(y, i);
+      s.closest = Vec3T<T>::Constant(sum);
       return s;
     }
-    SubsimplexSolution best = segment(y, i, j);
+    SubsimplexSolutionT<T> best = segment(y, i, j);
     best = nearer(best, segment(y, i, k));
     return nearer(best, segment(y, j, k));
   }
-  const double denom = 1 / sum;
-  const double v = vb * denom, w = vc * denom;
-  SubsimplexSolution s;
+  const T denom = 1 / sum;
+  const T v = vb * denom, w = vc * denom;
+  SubsimplexSolutionT<T> s;
   s.found = true;
   s.subset = static_cast<std::uint8_t>((1u << i) | (1u << j) | (1u << k));
   s.weights[i] = 1 - v - w;
@@ -95,22 +101,24 @@ SubsimplexSolution triangle(const std::array<Vec3, 4>& y, int i, int j, int k) {
 }
 
 /// Strictly opposite signs, without forming the product (which could under- or overflow).
-bool opposite_signs(double p, double q) {
+template <class T>
+bool opposite_signs(T p, T q) {
   return (p < 0 && q > 0) || (p > 0 && q < 0);
 }
 
 /// Closest point of the tetrahedron y_0 … y_3 (Ericson 5.1.6, ClosestPtPointTetrahedron).
-SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
+template <class T>
+SubsimplexSolutionT<T> tetrahedron(const std::array<Vec3T<T>, 4>& y) {
   // Faces with the vertex opposite each (Ericson's abc/d, acd/b, adb/c, bdc/a).
   static constexpr std::array<std::array<int, 4>, 4> kFaces = {
       {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}}};
-  SubsimplexSolution best;
+  SubsimplexSolutionT<T> best;
   bool outside_any = false;
   for (const auto& f : kFaces) {
-    const Vec3 &a = y[f[0]], &b = y[f[1]], &c = y[f[2]], &d = y[f[3]];
-    const Vec3 normal = (b - a).cross(c - a);
-    const double sign_p = (-a).dot(normal);  // [AP AB AC] with P the origin
-    const double sign_d = (d - a).dot(normal);
+    const Vec3T<T>&a = y[f[0]], &b = y[f[1]], &c = y[f[2]], &d = y[f[3]];
+    const Vec3T<T> normal = (b - a).cross(c - a);
+    const T sign_p = (-a).dot(normal);  // [AP AB AC] with P the origin
+    const T sign_d = (d - a).dot(normal);
     // Flat tetrahedron (sign_d = 0) or NaN: every face is a candidate.
     const bool test = opposite_signs(sign_p, sign_d) || !(sign_d != 0);
     if (!test) continue;
@@ -119,10 +127,10 @@ SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
   }
   if (outside_any) return best;
   // Inside: barycentric weights from the signed volumes with each vertex replaced by the origin.
-  const Vec3 &a = y[0], &b = y[1], &c = y[2], &d = y[3];
-  const Vec3 ab = b - a, ac = c - a, ad = d - a, ao = -a;
-  const double volume = ab.dot(ac.cross(ad));
-  SubsimplexSolution s;
+  const Vec3T<T>&a = y[0], &b = y[1], &c = y[2], &d = y[3];
+  const Vec3T<T> ab = b - a, ac = c - a, ad = d - a, ao = -a;
+  const T volume = ab.dot(ac.cross(ad));
+  SubsimplexSolutionT<T> s;
   s.found = true;
   s.subset = 0b1111;
   s.weights[1] = ao.dot(ac.cross(ad)) / volume;
@@ -136,8 +144,9 @@ SubsimplexSolution tetrahedron(const std::array<Vec3, 4>& y) {
 
 }  // namespace
 
-SubsimplexSolution voronoi_closest_point(const std::array<Vec3, 4>& y, int count) {
-  SubsimplexSolution s;
+template <class T>
+SubsimplexSolutionT<T> voronoi_closest_point(const std::array<Vec3T<T>, 4>& y, int count) {
+  SubsimplexSolutionT<T> s;
   switch (count) {
     case 1:
       s = single_point(y, 0);
@@ -164,5 +173,11 @@ SubsimplexSolution voronoi_closest_point(const std::array<Vec3, 4>& y, int count
   }
   return s;
 }
+
+template SubsimplexSolutionT<float> voronoi_closest_point(const std::array<Vec3T<float>, 4>&, int);
+template SubsimplexSolutionT<double> voronoi_closest_point(const std::array<Vec3T<double>, 4>&,
+                                                           int);
+template SubsimplexSolutionT<long double> voronoi_closest_point(
+    const std::array<Vec3T<long double>, 4>&, int);
 
 }  // namespace gjklab

@@ -438,11 +438,13 @@ mpr_tolerance = 3.3e-7
   CHECK(bool_options == std::map<std::string, std::string>{{"max_iterations", "17"},
                                                            {"start", "centre_point"},
                                                            {"initial_direction", "1 0 0"},
-                                                           {"recenter", "true"}});
+                                                           {"recenter", "true"},
+                                                           {"precision", "double"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
-  CHECK(johnson.size() == 9);
+  CHECK(johnson.size() == 10);
   CHECK(johnson.at("recenter") == "true");
+  CHECK(johnson.at("precision") == "double");
   CHECK(johnson.at("max_iterations") == std::to_string(GjkDistanceDefaults::max_iterations));
   CHECK(johnson.at("convergence") == "relative");
   CHECK(std::stod(johnson.at("relative_gap")) == 0.1);

@@ -37,6 +37,9 @@ struct AlgorithmOptions {
   peers::FclOptions fcl;
 #endif
   exact::OracleOptions oracle;
+  /// The floating-point type of the GJK queries (gjk-bool, the distance variants, epa): their
+  /// inputs are rounded to it and they compute in it; answers are reported in double.
+  ScalarPrecision precision = ScalarPrecision::double_float;
 
   /// Sets the iteration bound of every iterative algorithm at once (libccd's penetration
   /// queries: also max_depth_iterations; epa: also max_faces = 4 + 2n, so that the face buffer
@@ -89,7 +92,15 @@ struct AlgorithmInfo {
   /// The same with a per-iteration trace (of the cores' query for distance algorithms).
   Outcome (*run_swept_traced)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
                               const AlgorithmOptions& options, TraceRecorder& trace) = nullptr;
+  /// The query in float or long double (options.precision; nullptr for algorithms that run in
+  /// double only): on the clouds rounded to that precision, with the radii (zero for plain
+  /// polytopes) and a trace when `trace` is not null. run_algorithm dispatches to it.
+  Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                              const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
 };
+
+/// Whether the algorithm can run in another precision than double (options.precision).
+bool takes_precision(const AlgorithmInfo& algorithm);
 
 /// Whether the algorithm can answer for a pair with these radii (any algorithm, for zero radii).
 bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii);

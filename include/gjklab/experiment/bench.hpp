@@ -67,6 +67,9 @@ struct BenchConfig {
   std::map<std::string, double> published_pair_us;
   std::map<int, double> published_scene_ms;
   std::string published_source;  ///< where the published figures come from
+  /// Floating-point type of the GJK queries (gjk-bool, the distance variants, epa); the peers
+  /// and the oracle run in double whatever it is. Inputs are rounded before the timed loop.
+  ScalarPrecision precision = ScalarPrecision::double_float;
 };
 
 struct BenchRecord {

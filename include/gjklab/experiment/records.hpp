@@ -150,6 +150,15 @@ struct AlgorithmRecord {
   double witness_error_a = std::numeric_limits<double>::quiet_NaN();
   double witness_error_b = std::numeric_limits<double>::quiet_NaN();
   double witness_distance_error = std::numeric_limits<double>::quiet_NaN();
+  /// For a query in float or long double (the precision option): the exact distance of the
+  /// inputs rounded to that precision (nearest double; 0 when the rounded clouds intersect),
+  /// so that input rounding (this against the exact distance) and the query's own error (its
+  /// distance against this) can be told apart. NaN for queries in double and without the
+  /// oracle.
+  double rounded_exact_distance = std::numeric_limits<double>::quiet_NaN();
+  /// The same for the penetration depth (nearest double) where the rounded clouds intersect;
+  /// NaN otherwise.
+  double rounded_exact_depth = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Both clouds of a case, kept in the archive when any answer was wrong or not converged.

@@ -10,9 +10,25 @@
 
 namespace gjklab {
 
+/// The scalar type of a shape's points: S::Scalar where the shape declares one (the clouds
+/// of another precision, geometry/scalar_cloud.hpp), else double.
 template <class S>
-concept SupportMap = requires(const S& s, const Vec3& d) {
-  { s.support(d) } -> std::convertible_to<Vec3>;
+struct ShapeScalar {
+  using type = double;
+};
+template <class S>
+requires requires {
+  typename S::Scalar;
+}
+struct ShapeScalar<S> {
+  using type = typename S::Scalar;
+};
+template <class S>
+using shape_scalar_t = typename ShapeScalar<S>::type;
+
+template <class S>
+concept SupportMap = requires(const S& s, const Vec3T<shape_scalar_t<S>>& d) {
+  { s.support(d) } -> std::convertible_to<Vec3T<shape_scalar_t<S>>>;
 };
 
 /// A shape moved by a rigid pose; support is computed in the body frame and mapped back.
@@ -49,23 +65,25 @@ class MinkowskiDifference {
 template <SupportMap S>
 class SphereSwept {
  public:
-  SphereSwept(const S& core, double radius) : core_(&core), radius_(radius) {}
-  Vec3 support(const Vec3& d) const {
-    const double n = d.norm();
-    return n > 0 ? Vec3(core_->support(d) + (radius_ / n) * d) : core_->support(d);
+  using Scalar = shape_scalar_t<S>;
+  using Point = Vec3T<Scalar>;
+  SphereSwept(const S& core, Scalar radius) : core_(&core), radius_(radius) {}
+  Point support(const Point& d) const {
+    const Scalar n = d.norm();
+    return n > 0 ? Point(core_->support(d) + (radius_ / n) * d) : core_->support(d);
   }
   const S& core() const { return *core_; }
-  double radius() const { return radius_; }
+  Scalar radius() const { return radius_; }
   /// A point inside the swept shape, when the core offers one (the core's vertex mean lies in
   /// the core, hence in the swept shape): lets queries that start from centres use it.
-  Vec3 vertex_mean() const requires requires(const S& s) {
-    { s.vertex_mean() } -> std::convertible_to<Vec3>;
+  Point vertex_mean() const requires requires(const S& s) {
+    { s.vertex_mean() } -> std::convertible_to<Point>;
   }
   { return core_->vertex_mean(); }
 
  private:
   const S* core_;
-  double radius_;
+  Scalar radius_;
 };
 
 }  // namespace gjklab

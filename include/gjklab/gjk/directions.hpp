@@ -27,53 +27,64 @@
 
 namespace gjklab {
 
-/// Plain GJK: d_k = v_k.
+/// Plain GJK: d_k = v_k (in any precision).
 struct PlainDirections {
   static constexpr bool momentum = false;
-  void start(const Vec3&, const Vec3&) {}
-  Vec3 direction(int, const Vec3& v) const { return v; }
-  void observe(const Vec3&) {}
+  template <class P>
+  void start(const P&, const P&) {}
+  template <class P>
+  P direction(int, const P& v) const {
+    return v;
+  }
+  template <class P>
+  void observe(const P&) {}
 };
 
-/// Nesterov momentum (the paper's schedule, or coal's normalised heuristic).
-struct NesterovDirections {
+/// Nesterov momentum (the paper's schedule, or coal's normalised heuristic), in precision T.
+template <class T>
+struct NesterovDirectionsT {
+  using Point = Vec3T<T>;
   static constexpr bool momentum = true;
   bool normalize = false;
-  Vec3 d = Vec3::Zero();       ///< d_{k−1}
-  Vec3 s_prev = Vec3::Zero();  ///< s_{k−1}
+  Point d = Point::Zero();       ///< d_{k−1}
+  Point s_prev = Point::Zero();  ///< s_{k−1}
 
-  void start(const Vec3& d0, const Vec3& s0) {
+  void start(const Point& d0, const Point& s0) {
     d = d0;
     s_prev = s0;
   }
-  Vec3 direction(int k, const Vec3& v) {
+  Point direction(int k, const Point& v) {
     if (normalize) {
-      const double delta = (k + 2.0) / (k + 3.0);
-      const Vec3 y = delta * v + (1 - delta) * s_prev;
-      const double ny = y.norm(), nd = d.norm();
-      d = (ny > 0 && nd > 0) ? Vec3(delta * d / nd + (1 - delta) * y / ny) : v;
+      const T delta = T(k + 2) / T(k + 3);
+      const Point y = delta * v + (1 - delta) * s_prev;
+      const T ny = y.norm(), nd = d.norm();
+      d = (ny > 0 && nd > 0) ? Point(delta * d / nd + (1 - delta) * y / ny) : v;
     } else {
-      const double delta = (k + 1.0) / (k + 3.0);
-      const Vec3 y = delta * v + (1 - delta) * s_prev;
+      const T delta = T(k + 1) / T(k + 3);
+      const Point y = delta * v + (1 - delta) * s_prev;
       d = delta * d + (1 - delta) * y;
     }
     return d;
   }
-  void observe(const Vec3& s) { s_prev = s; }
+  void observe(const Point& s) { s_prev = s; }
 };
+using NesterovDirections = NesterovDirectionsT<double>;
 
-/// Polyak (heavy-ball) momentum, GJK++'s second accelerated variant.
-struct PolyakDirections {
+/// Polyak (heavy-ball) momentum, GJK++'s second accelerated variant, in precision T.
+template <class T>
+struct PolyakDirectionsT {
+  using Point = Vec3T<T>;
   static constexpr bool momentum = true;
-  Vec3 d = Vec3::Zero();  ///< d_{k−1}
+  Point d = Point::Zero();  ///< d_{k−1}
 
-  void start(const Vec3& d0, const Vec3&) { d = d0; }
-  Vec3 direction(int k, const Vec3& v) {
-    const double beta = 1.0 / (k + 1.0);
+  void start(const Point& d0, const Point&) { d = d0; }
+  Point direction(int k, const Point& v) {
+    const T beta = T(1) / T(k + 1);
     d = beta * d + (1 - beta) * v;
     return d;
   }
-  void observe(const Vec3&) {}
+  void observe(const Point&) {}
 };
+using PolyakDirections = PolyakDirectionsT<double>;
 
 }  // namespace gjklab

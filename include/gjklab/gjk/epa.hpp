@@ -49,6 +49,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "gjklab/geometry/support.hpp"
@@ -152,13 +153,39 @@ constexpr Termination to_termination(EpaStop s) {
 
 /// The answer of `epa`. `iterations` counts EPA's expansion steps only; GJK's are in
 /// gjk_iterations, and support_calls counts both phases and the blow-up.
-struct EpaResult : PenetrationResult {
+template <class T>
+struct EpaResultT : PenetrationResultT<T> {
   EpaStop stop = EpaStop::converged;
   int gjk_iterations = 0;
   /// Smallest support value n_f·w seen (an upper bound of the depth; +∞ if no step was made).
-  double depth_upper_bound = std::numeric_limits<double>::infinity();
+  T depth_upper_bound = std::numeric_limits<T>::infinity();
   int faces = 0;  ///< faces of the final polytope (0 when EPA did not build one)
 };
+using EpaResult = EpaResultT<double>;
+
+/// The answer in double (exact from float; long double rounded to nearest).
+template <class T>
+EpaResult to_double(const EpaResultT<T>& r) {
+  if constexpr (std::is_same_v<T, double>) {
+    return r;
+  } else {
+    EpaResult out;
+    out.intersect = r.intersect;
+    out.distance = static_cast<double>(r.distance);
+    out.depth = static_cast<double>(r.depth);
+    out.normal = r.normal.template cast<double>();
+    out.witness_a = r.witness_a.template cast<double>();
+    out.witness_b = r.witness_b.template cast<double>();
+    out.iterations = r.iterations;
+    out.support_calls = r.support_calls;
+    out.termination = r.termination;
+    out.stop = r.stop;
+    out.gjk_iterations = r.gjk_iterations;
+    out.depth_upper_bound = static_cast<double>(r.depth_upper_bound);
+    out.faces = r.faces;
+    return out;
+  }
+}
 
 namespace detail {
 
@@ -175,23 +202,25 @@ inline void validate(const EpaOptions& o) {
 
 /// Barycentric coordinates of the orthogonal projection of x onto the plane of (p0, p1, p2);
 /// false if the triangle has no area.
-inline bool barycentric(const Vec3& x, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                        std::array<double, 3>& out) {
-  const Vec3 n = (p1 - p0).cross(p2 - p0);
-  const double nn = n.squaredNorm();
+template <class T>
+bool barycentric(const Vec3T<T>& x, const Vec3T<T>& p0, const Vec3T<T>& p1, const Vec3T<T>& p2,
+                 std::array<T, 3>& out) {
+  const Vec3T<T> n = (p1 - p0).cross(p2 - p0);
+  const T nn = n.squaredNorm();
   if (!(nn > 0) || !std::isfinite(nn)) return false;
   out[0] = n.dot((p1 - x).cross(p2 - x)) / nn;
   out[1] = n.dot((p2 - x).cross(p0 - x)) / nn;
-  out[2] = 1.0 - out[0] - out[1];
+  out[2] = T(1) - out[0] - out[1];
   return true;
 }
 
 /// A vector orthogonal to e (unit length; e ≠ 0).
-inline Vec3 any_orthogonal(const Vec3& e) {
+template <class T>
+Vec3T<T> any_orthogonal(const Vec3T<T>& e) {
   int axis = 0;
   for (int i = 1; i < 3; ++i)
     if (std::abs(e[i]) < std::abs(e[axis])) axis = i;
-  return e.cross(Vec3::Unit(axis)).normalized();
+  return e.cross(Vec3T<T>::Unit(axis)).normalized();
 }
 
 }  // namespace detail
@@ -200,12 +229,13 @@ namespace detail {
 
 /// EPA's scale of rounding noise: R = max ‖w_i‖ over the support points seen, and lengths up to
 /// relative_noise·R are noise (see EpaOptions::relative_noise). R grows with every point taken.
+template <class T>
 struct EpaScale {
-  double relative_noise = 0;
-  double radius = 0;
-  double noise() const { return relative_noise * radius; }
+  T relative_noise = 0;
+  T radius = 0;
+  T noise() const { return relative_noise * radius; }
   /// Takes a support point into the scale; false if it is not finite.
-  bool take(const SimplexVertex& s) {
+  bool take(const SimplexVertexT<T>& s) {
     if (!s.w.allFinite()) return false;
     radius = std::max(radius, s.w.norm());
     return true;
@@ -213,11 +243,12 @@ struct EpaScale {
 };
 
 /// GJK's final simplex without repeated points, into p; returns their number.
-inline int distinct_simplex_points(const Simplex& simplex, std::array<SimplexVertex, 4>& p,
-                                   EpaScale& scale) {
+template <class T>
+int distinct_simplex_points(const SimplexT<T>& simplex, std::array<SimplexVertexT<T>, 4>& p,
+                            EpaScale<T>& scale) {
   int k = 0;
   for (int i = 0; i < simplex.size(); ++i) {
-    const SimplexVertex& s = simplex[i];
+    const SimplexVertexT<T>& s = simplex[i];
     bool seen = false;
     for (int j = 0; j < k; ++j)
       seen = seen || p[j].w == s.w;
@@ -230,13 +261,14 @@ inline int distinct_simplex_points(const Simplex& simplex, std::array<SimplexVer
 
 /// Reduces a simplex holding the origin that is flat, collinear or coincident within the
 /// noise to fewer points that still hold it; returns their number.
-inline int drop_degenerate_points(std::array<SimplexVertex, 4>& p, int k, const EpaScale& scale) {
+template <class T>
+int drop_degenerate_points(std::array<SimplexVertexT<T>, 4>& p, int k, const EpaScale<T>& scale) {
   if (k == 4) {
-    const Vec3 e1 = p[1].w - p[0].w, e2 = p[2].w - p[0].w, e3 = p[3].w - p[0].w;
-    const double volume6 = e1.dot(e2.cross(e3));
+    const Vec3T<T> e1 = p[1].w - p[0].w, e2 = p[2].w - p[0].w, e3 = p[3].w - p[0].w;
+    const T volume6 = e1.dot(e2.cross(e3));
     static constexpr std::array<std::array<int, 3>, 4> kTriangles = {
         {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}};
-    double largest_face = 0;
+    T largest_face = 0;
     for (const auto& t : kTriangles)
       largest_face =
           std::max(largest_face, (p[t[1]].w - p[t[0]].w).cross(p[t[2]].w - p[t[0]].w).norm());
@@ -245,28 +277,28 @@ inline int drop_degenerate_points(std::array<SimplexVertex, 4>& p, int k, const 
       // Flat: the origin lies in the planar hull of the four points, so in one of the four
       // triangles; keep the one that holds it best.
       int best = 0;
-      double best_score = -std::numeric_limits<double>::infinity();
+      T best_score = -std::numeric_limits<T>::infinity();
       for (int t = 0; t < 4; ++t) {
-        std::array<double, 3> l;
+        std::array<T, 3> l;
         const auto& tri = kTriangles[t];
-        if (!barycentric(Vec3::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l)) continue;
-        const double score = std::min({l[0], l[1], l[2]});
+        if (!barycentric<T>(Vec3T<T>::Zero(), p[tri[0]].w, p[tri[1]].w, p[tri[2]].w, l)) continue;
+        const T score = std::min({l[0], l[1], l[2]});
         if (score > best_score) {
           best_score = score;
           best = t;
         }
       }
       const auto tri = kTriangles[best];
-      p = {p[tri[0]], p[tri[1]], p[tri[2]], SimplexVertex{}};
+      p = {p[tri[0]], p[tri[1]], p[tri[2]], SimplexVertexT<T>{}};
       k = 3;
     }
   }
   if (k == 3) {
-    const double twice_area = (p[1].w - p[0].w).cross(p[2].w - p[0].w).norm();
+    const T twice_area = (p[1].w - p[0].w).cross(p[2].w - p[0].w).norm();
     int longest = 0;  // edge (longest, longest + 1 mod 3)
-    double length = 0;
+    T length = 0;
     for (int i = 0; i < 3; ++i) {
-      const double l = (p[(i + 1) % 3].w - p[i].w).norm();
+      const T l = (p[(i + 1) % 3].w - p[i].w).norm();
       if (l > length) {
         length = l;
         longest = i;
@@ -275,7 +307,7 @@ inline int drop_degenerate_points(std::array<SimplexVertex, 4>& p, int k, const 
     // Height on the longest edge within the noise: collinear; the longest edge covers the
     // other point, hence the origin.
     if (!(twice_area > scale.noise() * length)) {
-      p = {p[longest], p[(longest + 1) % 3], SimplexVertex{}, SimplexVertex{}};
+      p = {p[longest], p[(longest + 1) % 3], SimplexVertexT<T>{}, SimplexVertexT<T>{}};
       k = 2;
     }
   }
@@ -284,39 +316,41 @@ inline int drop_degenerate_points(std::array<SimplexVertex, 4>& p, int k, const 
 }
 
 /// How growing the simplex into a tetrahedron ended.
+template <class T>
 struct EpaSeed {
   enum class Kind : std::uint8_t { tetrahedron, flat, non_finite } kind = Kind::tetrahedron;
-  Vec3 flat_normal = Vec3::UnitX();  ///< for `flat`: a normal of the flat A − B
+  Vec3T<T> flat_normal = Vec3T<T>::UnitX();  ///< for `flat`: a normal of the flat A − B
 };
 
 /// Grows k = 1 … 4 points holding the origin into a tetrahedron inside A − B that holds it
 /// (possibly on its boundary), with support points off the current point, line or plane;
 /// reports A − B flat (a point, segment or planar set, within the noise) otherwise.
-template <class Support>
-EpaSeed grow_to_tetrahedron(std::array<SimplexVertex, 4>& p, int k, EpaScale& scale,
-                            Support&& support) {
-  using Kind = EpaSeed::Kind;
+template <class T, class Support>
+EpaSeed<T> grow_to_tetrahedron(std::array<SimplexVertexT<T>, 4>& p, int k, EpaScale<T>& scale,
+                               Support&& support) {
+  using Kind = typename EpaSeed<T>::Kind;
+  using Point = Vec3T<T>;
   if (k == 1) {
-    const std::array<Vec3, 6> axes = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
-                                      Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
-    for (const Vec3& d : axes) {
-      const SimplexVertex s = support(d);
+    const std::array<Point, 6> axes = {Point(1, 0, 0),  Point(-1, 0, 0), Point(0, 1, 0),
+                                       Point(0, -1, 0), Point(0, 0, 1),  Point(0, 0, -1)};
+    for (const Point& d : axes) {
+      const SimplexVertexT<T> s = support(d);
       if (!scale.take(s)) return {Kind::non_finite};
       if ((s.w - p[0].w).norm() > scale.noise()) {
         p[k++] = s;
         break;
       }
     }
-    if (k == 1) return {Kind::flat, Vec3::UnitX()};  // A − B is a point
+    if (k == 1) return {Kind::flat, Point::UnitX()};  // A − B is a point
   }
   if (k == 2) {
-    const Vec3 e = p[1].w - p[0].w;
-    const Vec3 u = any_orthogonal(e);
-    const Vec3 v = e.cross(u).normalized();
-    const double e_norm = e.norm();
-    const std::array<Vec3, 4> directions = {u, -u, v, -v};
-    for (const Vec3& d : directions) {
-      const SimplexVertex s = support(d);
+    const Point e = p[1].w - p[0].w;
+    const Point u = any_orthogonal(e);
+    const Point v = e.cross(u).normalized();
+    const T e_norm = e.norm();
+    const std::array<Point, 4> directions = {u, -u, v, -v};
+    for (const Point& d : directions) {
+      const SimplexVertexT<T> s = support(d);
       if (!scale.take(s)) return {Kind::non_finite};
       if ((s.w - p[0].w).cross(e).norm() / e_norm > scale.noise()) {
         p[k++] = s;
@@ -326,12 +360,12 @@ EpaSeed grow_to_tetrahedron(std::array<SimplexVertex, 4>& p, int k, EpaScale& sc
     if (k == 2) return {Kind::flat, u};  // A − B is a segment
   }
   if (k == 3) {
-    const Vec3 m = (p[1].w - p[0].w).cross(p[2].w - p[0].w).normalized();
-    const SimplexVertex above = support(m);
+    const Point m = (p[1].w - p[0].w).cross(p[2].w - p[0].w).normalized();
+    const SimplexVertexT<T> above = support(m);
     if (!scale.take(above)) return {Kind::non_finite};
-    const SimplexVertex below = support(-m);
+    const SimplexVertexT<T> below = support(Point(-m));
     if (!scale.take(below)) return {Kind::non_finite};
-    const double h_above = m.dot(above.w - p[0].w), h_below = -m.dot(below.w - p[0].w);
+    const T h_above = m.dot(above.w - p[0].w), h_below = -m.dot(below.w - p[0].w);
     if (!(std::max(h_above, h_below) > scale.noise())) return {Kind::flat, m};  // A − B is flat
     // One apex only: the tetrahedron is convex whatever the apexes' positions (a double
     // pyramid need not be). The origin then lies on its base, which EPA expands first.
@@ -347,11 +381,12 @@ EpaSeed grow_to_tetrahedron(std::array<SimplexVertex, 4>& p, int k, EpaScale& sc
 /// through (see EpaStop). Throws std::invalid_argument if the options are invalid. The parts:
 /// the GJK simplex reduced (drop_degenerate_points) and grown into a tetrahedron
 /// (grow_to_tetrahedron), then the loop below on the polytope (epa_polytope.hpp).
-template <SupportMap A, SupportMap B>
-EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const EpaOptions& options,
-                       EpaPolytope& polytope) {
+template <SupportMap A, SupportMap B, class T>
+EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk,
+                           const EpaOptions& options, EpaPolytopeT<T>& polytope) {
+  using Point = Vec3T<T>;
   detail::validate(options);
-  EpaResult out;
+  EpaResultT<T> out;
   out.gjk_iterations = gjk.iterations;
   out.support_calls = gjk.support_calls;
   out.witness_a = gjk.witness_a;
@@ -360,8 +395,8 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
   if (!gjk.intersect) {
     out.intersect = false;
     out.distance = gjk.distance;
-    const Vec3 ab = gjk.witness_b - gjk.witness_a;
-    const double n = ab.norm();
+    const Point ab = gjk.witness_b - gjk.witness_a;
+    const T n = ab.norm();
     if (n > 0 && std::isfinite(n)) out.normal = ab / n;
     out.termination = gjk.termination;
     out.stop = gjk.termination == Termination::converged ? EpaStop::separated : EpaStop::gjk_failed;
@@ -370,24 +405,26 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
   out.intersect = true;
   out.distance = 0;
 
-  auto support = [&](const Vec3& d) {
+  auto support = [&](const Point& d) {
     ++out.support_calls;
     return detail::minkowski_support(a, b, d);
   };
-  auto finish = [&](EpaStop stop) -> EpaResult& {
+  auto finish = [&](EpaStop stop) -> EpaResultT<T>& {
     out.stop = stop;
     out.termination = to_termination(stop);
     return out;
   };
 
-  detail::EpaScale scale{options.relative_noise};
-  std::array<SimplexVertex, 4> p;
+  // The noise tolerance is stated for double and scaled to T's rounding (rounding_scaled).
+  detail::EpaScale<T> scale{rounding_scaled<T>(options.relative_noise)};
+  std::array<SimplexVertexT<T>, 4> p;
   const int k = detail::distinct_simplex_points(gjk.simplex, p, scale);
   if (k == 0) return finish(EpaStop::degenerate_polytope);
-  const detail::EpaSeed seed =
+  const detail::EpaSeed<T> seed =
       detail::grow_to_tetrahedron(p, detail::drop_degenerate_points(p, k, scale), scale, support);
-  if (seed.kind == detail::EpaSeed::Kind::non_finite) return finish(EpaStop::non_finite);
-  if (seed.kind == detail::EpaSeed::Kind::flat) {
+  using SeedKind = typename detail::EpaSeed<T>::Kind;
+  if (seed.kind == SeedKind::non_finite) return finish(EpaStop::non_finite);
+  if (seed.kind == SeedKind::flat) {
     // A − B has no interior (up to the noise level): depth 0 at GJK's contact point.
     out.depth = 0;
     out.normal = seed.flat_normal;
@@ -398,14 +435,14 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
 
   int closest = 0;
   // The answer: the closest face's depth, normal and witnesses.
-  auto answer = [&](EpaStop stop) -> EpaResult& {
-    const EpaPolytope::Face& f = polytope.faces[closest];
-    out.depth = std::max(f.distance, 0.0);
+  auto answer = [&](EpaStop stop) -> EpaResultT<T>& {
+    const typename EpaPolytopeT<T>::Face& f = polytope.faces[closest];
+    out.depth = std::max(f.distance, T(0));
     out.normal = f.normal;
-    const Vec3 x = f.distance * f.normal;
-    std::array<double, 3> l;
+    const Point x = f.distance * f.normal;
+    std::array<T, 3> l;
     const auto& v = polytope.vertices;
-    const SimplexVertex &v0 = v[f.v[0]], &v1 = v[f.v[1]], &v2 = v[f.v[2]];
+    const SimplexVertexT<T>&v0 = v[f.v[0]], &v1 = v[f.v[1]], &v2 = v[f.v[2]];
     if (detail::barycentric(x, v0.w, v1.w, v2.w, l)) {
       out.witness_a = l[0] * v0.a + l[1] * v1.a + l[2] * v2.a;
       out.witness_b = l[0] * v0.b + l[1] * v1.b + l[2] * v2.b;
@@ -416,16 +453,16 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
 
   for (int step = 0;; ++step) {
     closest = polytope.closest_face();
-    const Vec3 n = polytope.faces[closest].normal;
-    const double lower = polytope.faces[closest].distance;
+    const Point n = polytope.faces[closest].normal;
+    const T lower = polytope.faces[closest].distance;
     if (out.iterations >= options.max_iterations) return answer(EpaStop::step_limit);
     ++out.iterations;
-    const SimplexVertex w = support(n);
+    const SimplexVertexT<T> w = support(n);
     if (!scale.take(w)) return answer(EpaStop::non_finite);
-    const double upper = n.dot(w.w);
+    const T upper = n.dot(w.w);
     out.depth_upper_bound = std::min(out.depth_upper_bound, upper);
-    const double gap = upper - lower;
-    if (gap <= options.relative_gap * lower || gap <= scale.noise())
+    const T gap = upper - lower;
+    if (gap <= static_cast<T>(options.relative_gap) * lower || gap <= scale.noise())
       return answer(EpaStop::converged);
     if (polytope.has_vertex(w.w)) return answer(EpaStop::repeated_support);
     // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise). A
@@ -443,19 +480,20 @@ EpaResult epa_from_gjk(const A& a, const B& b, const DistanceResult& gjk, const 
   }
 }
 
-/// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect.
-template <SupportMap A, SupportMap B>
-EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
-                  const EpaOptions& options, EpaPolytope& ws) {
+/// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect, in the
+/// shapes' scalar type (double, or float / long double for ScalarCloud).
+template <SupportMap A, SupportMap B, class T = shape_scalar_t<A>>
+EpaResultT<T> gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
+                      const EpaOptions& options, EpaPolytopeT<T>& ws) {
   detail::validate(options);
   // Re-centred once for both phases (gjk_options.recenter, see recentred.hpp): EPA's support
   // values are compared at the scale of the pair too.
-  if constexpr (std::same_as<A, Polytope> && std::same_as<B, Polytope>) {
-    if (const std::optional<Vec3> t = detail::recentring_of(a, b, gjk_options.recenter)) {
-      const Polytope moved_a = a.translated(-*t), moved_b = b.translated(-*t);
-      EpaResult out =
+  if constexpr (detail::RecentrableCloud<A> && std::same_as<A, B>) {
+    if (const auto t = detail::recentring_of(a, b, gjk_options.recenter)) {
+      const A moved_a = a.translated(-*t), moved_b = b.translated(-*t);
+      EpaResultT<T> out =
           epa_from_gjk(moved_a, moved_b, gjk_distance(moved_a, moved_b, gjk_options), options, ws);
-      detail::translate_answer(out, *t);
+      detail::translate_answer<T>(out, *t);
       return out;
     }
   }
@@ -463,9 +501,10 @@ EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
 }
 
 template <SupportMap A, SupportMap B>
-EpaResult gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options = {},
-                  const EpaOptions& options = {}) {
-  EpaPolytope polytope;
+EpaResultT<shape_scalar_t<A>> gjk_epa(const A& a, const B& b,
+                                      const GjkDistanceOptions& gjk_options = {},
+                                      const EpaOptions& options = {}) {
+  EpaPolytopeT<shape_scalar_t<A>> polytope;
   return gjk_epa(a, b, gjk_options, options, polytope);
 }
 

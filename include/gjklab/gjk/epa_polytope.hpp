@@ -15,14 +15,18 @@
 
 namespace gjklab {
 
-class EpaPolytope {
+/// In the scalar type T of the query (EpaPolytope: double); defined for float, double and
+/// long double (epa_polytope.cpp).
+template <class T>
+class EpaPolytopeT {
  public:
+  using Point = Vec3T<T>;
   struct Face {
     std::array<int, 3> v{};                 ///< vertex indices, counter-clockwise seen from outside
     std::array<int, 3> adj{};               ///< adj[i]: the face across edge (v[i], v[i+1 mod 3])
     std::array<std::int8_t, 3> adj_edge{};  ///< which edge of adj[i] is that edge
-    Vec3 normal = Vec3::Zero();             ///< outward unit normal
-    double distance = 0;                    ///< normal·v[0]: signed distance of the plane
+    Point normal = Point::Zero();           ///< outward unit normal
+    T distance = 0;                         ///< normal·v[0]: signed distance of the plane
     int visible_stamp = -1;                 ///< step in which the face was found visible
     bool alive = false;
   };
@@ -32,8 +36,8 @@ class EpaPolytope {
     std::int8_t outside_edge = 0;
     int next = -1, prev = -1;  ///< neighbouring horizon edges along the loop
     int new_face = -1;
-    Vec3 normal = Vec3::Zero();
-    double distance = 0;
+    Point normal = Point::Zero();
+    T distance = 0;
   };
 
   /// Empties the polytope and reserves room for a query of at most `max_steps` expansions and
@@ -42,18 +46,18 @@ class EpaPolytope {
 
   /// Starts from a tetrahedron of four points (any order: the faces are oriented outward from
   /// its centroid). False if a face has no plane (a flat tetrahedron).
-  bool start_tetrahedron(const std::array<SimplexVertex, 4>& p);
+  bool start_tetrahedron(const std::array<SimplexVertexT<T>, 4>& p);
 
   /// The live face whose plane is nearest the origin (the first of equals).
   int closest_face() const;
 
   /// True if w is (bitwise) a vertex already.
-  bool has_vertex(const Vec3& w) const;
+  bool has_vertex(const Point& w) const;
 
   /// Marks the faces that w sees, by flood fill from `seed` (which w must see): a face sees w
   /// when n·w − d ≥ −plane_slack. Collects the horizon, the edges between seen and unseen
   /// faces, and returns the number of faces seen. `step` stamps this step's faces.
-  int mark_visible(int seed, const Vec3& w, double plane_slack, int step);
+  int mark_visible(int seed, const Point& w, T plane_slack, int step);
 
   /// True if the last horizon is one simple loop (the seen region a disc), with each edge
   /// linked to its neighbours; otherwise rounding made visibility inconsistent.
@@ -62,7 +66,7 @@ class EpaPolytope {
   /// Replaces the faces seen in `step` by the cone from w over the horizon. False, changing
   /// nothing, if a new face has no plane or its plane is nearer the origin than
   /// lower_bound − slack (the polytope would stop being convex around the origin).
-  bool add_cone(const SimplexVertex& w, int step, double lower_bound, double slack);
+  bool add_cone(const SimplexVertexT<T>& w, int step, T lower_bound, T slack);
 
   /// Whether the cone over the last horizon fits: a vertex slot and the face budget.
   bool cone_fits(int visible, int max_faces) const;
@@ -70,12 +74,12 @@ class EpaPolytope {
   int alive() const { return alive_; }
   const std::vector<HorizonEdge>& horizon() const { return horizon_; }
 
-  std::vector<SimplexVertex> vertices;
+  std::vector<SimplexVertexT<T>> vertices;
   std::vector<Face> faces;
 
  private:
   /// Normal and plane distance of the triangle (i, j, l); false if it has no normal.
-  bool plane(int i, int j, int l, Vec3& normal, double& distance) const;
+  bool plane(int i, int j, int l, Point& normal, T& distance) const;
   int allocate_face();
 
   std::vector<int> free_faces_;
@@ -84,5 +88,7 @@ class EpaPolytope {
   std::vector<int> edge_from_;  ///< per vertex: the horizon edge starting there, or −1
   int alive_ = 0;
 };
+
+using EpaPolytope = EpaPolytopeT<double>;
 
 }  // namespace gjklab

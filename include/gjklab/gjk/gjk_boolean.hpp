@@ -36,10 +36,12 @@ namespace gjklab {
 namespace detail {
 
 /// Simplex of the boolean GJK, newest point first (points[0] is the last support point).
-struct BooleanSimplex {
-  Vec3 points[4];
+template <class T>
+struct BooleanSimplexT {
+  Vec3T<T> points[4];
   int size = 0;
 };
+using BooleanSimplex = BooleanSimplexT<double>;
 
 /// The iteration from which the walk watches for a cycle (queries that end sooner, nearly all,
 /// skip the bookkeeping).
@@ -48,31 +50,33 @@ inline constexpr int kCycleWatchStart = 12;
 /// The last few support points of a traced walk, to give its simplex points (kept as points
 /// of A − B only) their vertices in A and B; a point not found (the centre start) is returned
 /// without indices.
+template <class T>
 class RecentSupports {
  public:
-  void add(const SimplexVertex& v) {
+  void add(const SimplexVertexT<T>& v) {
     supports_[next_] = v;
     next_ = (next_ + 1) % kSize;
     count_ = count_ < kSize ? count_ + 1 : kSize;
   }
-  SimplexVertex find(const Vec3& w) const {
+  SimplexVertexT<T> find(const Vec3T<T>& w) const {
     for (int i = 0; i < count_; ++i)
       if (supports_[i].w == w) return supports_[i];
-    SimplexVertex unknown;
+    SimplexVertexT<T> unknown;
     unknown.w = w;
     return unknown;
   }
 
  private:
   static constexpr int kSize = 8;  // a simplex holds at most the last four support points
-  std::array<SimplexVertex, kSize> supports_{};
+  std::array<SimplexVertexT<T>, kSize> supports_{};
   int next_ = 0;
   int count_ = 0;
 };
 
 /// Puts the newest point at the front of the simplex (a fall-through switch rather than a loop
 /// with a data-dependent trip count: the same moves, without the loop's mispredictions).
-inline void push_front(BooleanSimplex& simplex, const Vec3& w) {
+template <class T>
+void push_front(BooleanSimplexT<T>& simplex, const Vec3T<T>& w) {
   switch (simplex.size) {
     case 3:
       simplex.points[3] = simplex.points[2];
@@ -91,22 +95,22 @@ inline void push_front(BooleanSimplex& simplex, const Vec3& w) {
 /// test's d·w (in v_dot_w; separated when < 0) and ‖d‖² (in v_norm_squared), and the simplex
 /// after the step with each point's vertices in A and B, found among the recent support points
 /// (the walk keeps points only). No work when the observer is disabled.
-template <class Observer>
+template <class T, class Observer>
 class BooleanTrace {
  public:
   explicit BooleanTrace(Observer& observer) : observer_(observer) {}
-  void row(int iteration, const Vec3& d, const SimplexVertex& w, const BooleanSimplex& simplex,
-           GjkStep step) {
+  void row(int iteration, const Vec3T<T>& d, const SimplexVertexT<T>& w,
+           const BooleanSimplexT<T>& simplex, GjkStep step) {
     if constexpr (Observer::enabled) {
       recent_.add(w);
-      GjkIterationTrace t;
+      GjkIterationTrace t;  // in double whatever the query's precision
       t.iteration = iteration;
-      t.direction = d;
-      t.support = w;
-      t.v_norm_squared = d.squaredNorm();
-      t.v_dot_w = w.w.dot(d);
+      t.direction = d.template cast<double>();
+      t.support = to_double(w);
+      t.v_norm_squared = static_cast<double>(d.squaredNorm());
+      t.v_dot_w = static_cast<double>(w.w.dot(d));
       for (int i = 0; i < simplex.size; ++i)
-        t.simplex.push(recent_.find(simplex.points[i]));
+        t.simplex.push(to_double(recent_.find(simplex.points[i])));
       t.step = step;
       observer_.on_iteration(t);
     }
@@ -117,7 +121,7 @@ class BooleanTrace {
   Observer& observer_;
   // Only a traced walk keeps the recent support points: an untraced query (the hot path)
   // neither builds nor clears them.
-  [[no_unique_address]] std::conditional_t<Observer::enabled, RecentSupports, Nothing> recent_;
+  [[no_unique_address]] std::conditional_t<Observer::enabled, RecentSupports<T>, Nothing> recent_;
 };
 
 /// Brent's cycle detection on the walk's states (search direction and simplex, bit for bit).
@@ -126,10 +130,11 @@ class BooleanTrace {
 /// power of two, so a cycle of any period p is caught within about 2·max(p, steps before it)
 /// steps. (A ring of the last six states missed the period-10 cycle of quickstart case 7786.)
 /// A support point alone may legitimately come back: the boolean walk is not monotone.
+template <class T>
 class CycleDetector {
  public:
   /// Records the state; true if it equals the kept one (the walk is in a cycle).
-  bool seen(const Vec3& direction, const BooleanSimplex& simplex) {
+  bool seen(const Vec3T<T>& direction, const BooleanSimplexT<T>& simplex) {
     if (kept_ && kept_direction_ == direction && same(kept_simplex_, simplex)) return true;
     if (!kept_ || ++since_kept_ == period_bound_) {
       kept_ = true;
@@ -142,22 +147,24 @@ class CycleDetector {
   }
 
  private:
-  static bool same(const BooleanSimplex& x, const BooleanSimplex& y) {
+  static bool same(const BooleanSimplexT<T>& x, const BooleanSimplexT<T>& y) {
     if (x.size != y.size) return false;
     for (int i = 0; i < x.size; ++i)
       if (x.points[i] != y.points[i]) return false;
     return true;
   }
   bool kept_ = false;
-  Vec3 kept_direction_ = Vec3::Zero();
-  BooleanSimplex kept_simplex_;
+  Vec3T<T> kept_direction_ = Vec3T<T>::Zero();
+  BooleanSimplexT<T> kept_simplex_;
   int since_kept_ = 0;
   int period_bound_ = 1;
 };
 
 /// Updates simplex and direction for the segment, triangle or tetrahedron case.
-/// Returns true when the origin is enclosed (on the boundary counts).
-bool boolean_gjk_step(BooleanSimplex& simplex, Vec3& direction);
+/// Returns true when the origin is enclosed (on the boundary counts). Defined for T = float,
+/// double and long double.
+template <class T>
+bool boolean_gjk_step(BooleanSimplexT<T>& simplex, Vec3T<T>& direction);
 
 }  // namespace detail
 
@@ -172,7 +179,7 @@ BooleanResult decide_by_distance(const A& a, const B& b, const GjkBooleanOptions
   GjkDistanceOptions distance;
   distance.max_iterations = options.max_iterations;
   distance.recenter = false;  // the walk's shapes are re-centred already where it applies
-  const DistanceResult r = gjk_distance(a, b, distance, observer);
+  const auto r = gjk_distance(a, b, distance, observer);
   out.intersect = r.intersect;
   out.iterations += r.iterations;
   out.support_calls += r.support_calls;
@@ -184,15 +191,17 @@ BooleanResult decide_by_distance(const A& a, const B& b, const GjkBooleanOptions
 template <SupportMap A, SupportMap B, class Observer>
 BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOptions& options,
                                      Observer& observer) {
+  using T = shape_scalar_t<A>;
+  using Point = Vec3T<T>;
   BooleanResult out;
-  detail::BooleanSimplex simplex;
-  Vec3 direction;
-  Vec3 centre;
+  detail::BooleanSimplexT<T> simplex;
+  Point direction;
+  Point centre;
   const bool from_centre =
       options.start != GjkBooleanStart::fixed_direction && detail::centre_difference(a, b, centre);
 
-  detail::BooleanTrace<Observer> tracer{observer};
-  auto trace = [&](const Vec3& d, const SimplexVertex& w, GjkStep step) {
+  detail::BooleanTrace<T, Observer> tracer{observer};
+  auto trace = [&](const Point& d, const SimplexVertexT<T>& w, GjkStep step) {
     tracer.row(out.iterations, d, w, simplex, step);
   };
   auto finish = [&](bool intersect, Termination t) {
@@ -200,7 +209,7 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     out.termination = t;
     return out;
   };
-  detail::CycleDetector cycles;
+  detail::CycleDetector<T> cycles;
   if (from_centre && options.start == GjkBooleanStart::centre_point) {
     // c is a point of the hull of A − B: a simplex vertex like any support point, but free.
     simplex.points[0] = centre;
@@ -208,8 +217,9 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     direction = -centre;
     out.iterations = 0;
   } else {
-    const Vec3 first_direction = from_centre ? Vec3(-centre) : options.initial_direction;
-    const SimplexVertex first = detail::minkowski_support(a, b, first_direction);
+    const Point first_direction =
+        from_centre ? Point(-centre) : Point(options.initial_direction.cast<T>());
+    const SimplexVertexT<T> first = detail::minkowski_support(a, b, first_direction);
     out.support_calls = 1;
     if (!is_finite(first.w)) return finish(false, Termination::numerical_failure);
     // Only the centre direction points towards the origin, so only there can the first point
@@ -241,8 +251,8 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
       trace(direction, {}, GjkStep::cycled);
       return decide_by_distance(a, b, options, out, observer);
     }
-    const Vec3 d = direction;
-    const SimplexVertex w = detail::minkowski_support(a, b, d);
+    const Point d = direction;
+    const SimplexVertexT<T> w = detail::minkowski_support(a, b, d);
     ++out.support_calls;
     if (!is_finite(w.w)) {
       trace(d, w, GjkStep::non_finite);
@@ -276,10 +286,10 @@ BooleanResult gjk_intersect(const A& a, const B& b, const GjkBooleanOptions& opt
                             Observer&& observer = {}) {
   using Traced = std::remove_reference_t<Observer>;
   if constexpr (detail::Recentrable<A> && detail::Recentrable<B>) {
-    if (const std::optional<Vec3> t = detail::recentring_of(a, b, options.recenter)) {
-      const Polytope core_a = detail::core_of(a).translated(-*t);
-      const Polytope core_b = detail::core_of(b).translated(-*t);
-      detail::TranslatedTrace<Traced> moved_trace{observer, *t, false};
+    if (const auto t = detail::recentring_of(a, b, options.recenter)) {
+      const auto core_a = detail::core_of(a).translated(-*t);
+      const auto core_b = detail::core_of(b).translated(-*t);
+      detail::TranslatedTrace<Traced> moved_trace{observer, t->template cast<double>(), false};
       return detail::gjk_intersect_as_given(detail::with_core(a, core_a),
                                             detail::with_core(b, core_b), options, moved_trace);
     }

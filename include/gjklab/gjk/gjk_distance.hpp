@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 #include <span>
 #include <utility>
@@ -27,12 +28,14 @@ namespace gjklab {
 
 /// The point of a simplex closest to the origin, with the matching points of A and B and the
 /// barycentric weights of the (reduced) simplex points.
-struct ClosestOnSimplex {
-  Vec3 v = Vec3::Zero();
-  Vec3 witness_a = Vec3::Zero();
-  Vec3 witness_b = Vec3::Zero();
-  std::array<double, 4> weights{};
+template <class T>
+struct ClosestOnSimplexT {
+  Vec3T<T> v = Vec3T<T>::Zero();
+  Vec3T<T> witness_a = Vec3T<T>::Zero();
+  Vec3T<T> witness_b = Vec3T<T>::Zero();
+  std::array<T, 4> weights{};
 };
+using ClosestOnSimplex = ClosestOnSimplexT<double>;
 
 /// A distance sub-algorithm: reduces the simplex to the sub-simplex whose convex hull holds
 /// the point closest to the origin, and computes that point. Returns false, leaving the
@@ -56,9 +59,10 @@ namespace detail {
 /// The witness points of the simplex's closest point: Σ λ_k a_k and Σ λ_k b_k over the kept
 /// points, in order. The loops keep only v and the weights and form the witnesses once, at the
 /// end.
-inline void combine_witnesses(const Simplex& simplex, const std::array<double, 4>& weights,
-                              Vec3& witness_a, Vec3& witness_b) {
-  Vec3 wa = Vec3::Zero(), wb = Vec3::Zero();
+template <class T>
+void combine_witnesses(const SimplexT<T>& simplex, const std::array<T, 4>& weights,
+                       Vec3T<T>& witness_a, Vec3T<T>& witness_b) {
+  Vec3T<T> wa = Vec3T<T>::Zero(), wb = Vec3T<T>::Zero();
   for (int k = 0; k < simplex.size(); ++k) {
     wa += weights[k] * simplex[k].a;
     wb += weights[k] * simplex[k].b;
@@ -69,9 +73,9 @@ inline void combine_witnesses(const Simplex& simplex, const std::array<double, 4
 
 /// Keeps the subset a sub-algorithm's solution chose and records v and the kept points'
 /// weights, in order, in `out` (its witnesses are left alone).
-template <class Solution>
-void keep_subset(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
-  std::array<double, 4> weights{};
+template <class Solution, class T>
+void keep_subset(const Solution& s, SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) {
+  std::array<T, 4> weights{};
   int kept = 0;
   for (int i = 0; i < simplex.size(); ++i)
     if (s.subset & (1u << i)) weights[kept++] = s.weights[i];
@@ -83,8 +87,8 @@ void keep_subset(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
 /// Applies a sub-algorithm's answer (subset, weights by original index, closest point) to the
 /// simplex and the closest-point record, witnesses included. False, leaving both untouched, if
 /// nothing was found.
-template <class Solution>
-bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
+template <class Solution, class T>
+bool keep_solution(const Solution& s, SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) {
   if (!s.found) return false;
   keep_subset(s, simplex, out);
   combine_witnesses(simplex, out.weights, out.witness_a, out.witness_b);
@@ -95,10 +99,12 @@ bool keep_solution(const Solution& s, Simplex& simplex, ClosestOnSimplex& out) {
 
 /// Johnson's distance sub-algorithm (see johnson.hpp), as published: no backup procedure.
 struct JohnsonSubAlgorithm {
-  JohnsonSolution solve(const std::array<Vec3, 4>& y, int count) const {
+  template <class T>
+  JohnsonSolutionT<T> solve(const std::array<Vec3T<T>, 4>& y, int count) const {
     return johnson_closest_point(y, count);
   }
-  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+  template <class T>
+  bool reduce(SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) const {
     return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
@@ -109,10 +115,12 @@ namespace detail {
 /// the shapes are polytopes that can report them). Always inlined: every iteration of every
 /// query waits for it, and inlined, its 80-byte result stays in registers instead of making a
 /// round trip through memory.
-template <SupportMap A, SupportMap B>
-[[gnu::always_inline]] inline SimplexVertex minkowski_support(const A& a, const B& b,
-                                                              const Vec3& d) {
-  SimplexVertex v;
+template <SupportMap A, SupportMap B, class T>
+[[gnu::always_inline]] inline SimplexVertexT<T> minkowski_support(const A& a, const B& b,
+                                                                  const Vec3T<T>& d) {
+  static_assert(std::same_as<shape_scalar_t<A>, T> && std::same_as<shape_scalar_t<B>, T>,
+                "both shapes and the direction in one precision");
+  SimplexVertexT<T> v;
   // Two polytopes that both scan: one call that overlaps the two searches (polytope.hpp).
   if constexpr (requires { scan_support_pair(a, d, b); }) {
     if (!a.uses_hill_climbing() && !b.uses_hill_climbing()) {
@@ -148,14 +156,14 @@ template <SupportMap A, SupportMap B>
 /// point therefore lies on one of its four faces. Reduces `simplex` to the face whose closest
 /// point (by the sub-algorithm) is nearest the origin; false, leaving it untouched, when no face
 /// can be decided.
-template <class Sub>
-bool reduce_to_closest_face(const Sub& sub, Simplex& simplex, ClosestOnSimplex& out) {
-  const Simplex full = simplex;
+template <class Sub, class T>
+bool reduce_to_closest_face(const Sub& sub, SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) {
+  const SimplexT<T> full = simplex;
   bool found = false;
   for (int drop = 0; drop < full.size(); ++drop) {
-    Simplex face = full;
+    SimplexT<T> face = full;
     face.keep(static_cast<std::uint8_t>(0xF & ~(1u << drop)));
-    ClosestOnSimplex c;
+    ClosestOnSimplexT<T> c;
     if (!sub.reduce(face, c) || !is_finite(c.v)) continue;
     if (!found || c.v.squaredNorm() < out.v.squaredNorm()) {
       simplex = face;
@@ -176,29 +184,31 @@ struct DistanceStop {
 /// result being built (its simplex is the working simplex), the best point so far and the
 /// lower bound, with the steps every driver takes the same way. The result is the caller's
 /// local, so that it is returned without a copy.
-template <class Observer>
+template <class T, class Observer>
 struct DistanceQueryState {
   const GjkDistanceOptions& options;
   Observer& observer;
-  DistanceResult& out;
+  DistanceResultT<T>& out;
   /// v and the weights of the simplex's points (witnesses are formed by finish()).
-  ClosestOnSimplex best{};
-  double lower_bound = 0;
+  ClosestOnSimplexT<T> best{};
+  T lower_bound = 0;
 
-  Simplex& simplex() { return out.simplex; }
+  SimplexT<T>& simplex() { return out.simplex; }
 
-  /// Reports the iteration to the observer when it is enabled (no work otherwise).
-  void trace(const Vec3& direction, const SimplexVertex& w, double vv, double vw, GjkStep step) {
+  /// Reports the iteration to the observer when it is enabled (no work otherwise). Trace rows
+  /// are in double whatever the query's precision.
+  void trace(const Vec3T<T>& direction, const SimplexVertexT<T>& w, T vv, T vw, GjkStep step) {
     if constexpr (Observer::enabled) {
       GjkIterationTrace t;
       t.iteration = out.iterations;
-      t.direction = direction;
-      t.support = w;
-      t.v_norm_squared = vv;
-      t.v_dot_w = vw;
-      t.lower_bound = lower_bound;
-      t.simplex = out.simplex;
-      t.weights = best.weights;
+      t.direction = direction.template cast<double>();
+      t.support = to_double(w);
+      t.v_norm_squared = static_cast<double>(vv);
+      t.v_dot_w = static_cast<double>(vw);
+      t.lower_bound = static_cast<double>(lower_bound);
+      t.simplex = to_double(out.simplex);
+      for (int k = 0; k < 4; ++k)
+        t.weights[k] = static_cast<double>(best.weights[k]);
       t.step = step;
       observer.on_iteration(t);
     }
@@ -209,26 +219,28 @@ struct DistanceQueryState {
     out.intersect = stop.contact;
     out.closest = best.v;
     combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
-    out.distance = stop.contact ? 0.0 : best.v.norm();
-    out.lower_bound = stop.contact ? 0.0 : lower_bound;
+    out.distance = stop.contact ? T(0) : best.v.norm();
+    out.lower_bound = stop.contact ? T(0) : lower_bound;
     out.termination = stop.termination;
   }
 
   /// Relative to the simplex, not squared: ‖v‖ ≤ relative_contact · max‖y_i‖ means v is
-  /// indistinguishable from the rounding noise of the points it was computed from.
-  bool in_contact(const Vec3& v, const Simplex& s) const {
+  /// indistinguishable from the rounding noise of the points it was computed from (the
+  /// tolerance is stated for double and scaled to T's rounding, see rounding_scaled).
+  bool in_contact(const Vec3T<T>& v, const SimplexT<T>& s) const {
     return in_contact(v, s.max_norm_squared());
   }
   /// The same test given max‖y_i‖² over the points v was computed from.
-  bool in_contact(const Vec3& v, double max_norm_squared) const {
-    const double tol = options.relative_contact;
+  bool in_contact(const Vec3T<T>& v, T max_norm_squared) const {
+    const T tol = rounding_scaled<T>(options.relative_contact);
     return v.squaredNorm() <= tol * tol * max_norm_squared;
   }
 };
 
 /// Largest ‖y_i‖² over the points of y in `subset` (bit i ↔ y[i]).
-inline double max_norm_squared(const std::array<Vec3, 4>& y, std::uint8_t subset) {
-  double m = 0;
+template <class T>
+T max_norm_squared(const std::array<Vec3T<T>, 4>& y, std::uint8_t subset) {
+  T m = 0;
   for (int i = 0; i < 4; ++i)
     if (subset & (1u << i)) m = std::max(m, y[i].squaredNorm());
   return m;
@@ -236,9 +248,9 @@ inline double max_norm_squared(const std::array<Vec3, 4>& y, std::uint8_t subset
 
 /// Applies a sub-algorithm's solution for the simplex plus `next` (solved as point
 /// simplex.size()): adds next, keeps the chosen subset, and records v and the kept weights.
-template <class Solution>
-void apply_solution(const Solution& s, const SimplexVertex& next, Simplex& simplex,
-                    ClosestOnSimplex& best) {
+template <class Solution, class T>
+void apply_solution(const Solution& s, const SimplexVertexT<T>& next, SimplexT<T>& simplex,
+                    ClosestOnSimplexT<T>& best) {
   simplex.push(next);
   keep_subset(s, simplex, best);
 }
@@ -248,18 +260,24 @@ void apply_solution(const Solution& s, const SimplexVertex& next, Simplex& simpl
 /// Relative error bound of a rounded 3-vector dot product, |fl(x·y) − x·y| ≤ 3u‖x‖‖y‖ with
 /// u = 2^-53, rounded up: about 4.5u.
 inline constexpr double kDotRoundoff = 1e-15;
+/// The same bound in the scalar type T (scaled by T's unit roundoff; kDotRoundoff for double).
+template <class T>
+inline constexpr T dot_roundoff = rounding_scaled<T>(kDotRoundoff);
 
 /// The stopping test of options.convergence for ‖v‖² = vv and v·w = vw (see GjkConvergence).
-inline bool gap_converged(const GjkDistanceOptions& options, double vv, double vw) {
+/// The tolerances are the user's, rounded to T.
+template <class T>
+bool gap_converged(const GjkDistanceOptions& options, T vv, T vw) {
   // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist, on squared lengths.
-  const double gap = vv - vw;
+  const T gap = vv - vw;
   switch (options.convergence) {
     case GjkConvergence::relative:
-      return gap <= options.relative_gap * vv || gap <= options.absolute_gap_squared;
+      return gap <= static_cast<T>(options.relative_gap) * vv ||
+             gap <= static_cast<T>(options.absolute_gap_squared);
     case GjkConvergence::absolute:
-      return gap <= options.absolute_gap_squared;
+      return gap <= static_cast<T>(options.absolute_gap_squared);
     case GjkConvergence::duality_gap:
-      return 2 * gap <= options.duality_gap_tolerance;
+      return 2 * gap <= static_cast<T>(options.duality_gap_tolerance);
   }
   return false;
 }
@@ -271,11 +289,12 @@ namespace detail {
 /// square root (which shares a unit with the sub-algorithm's divisions that the next iteration
 /// waits for) is taken, except where the squared threshold is not a normal double (‖v‖‖w‖
 /// below about 1e-139 or above 1e169): there the comparison is made unsquared, as stated.
-inline bool separation_certified(double vw, double vv, double ww) {
+template <class T>
+bool separation_certified(T vw, T vv, T ww) {
   if (!(vw > 0)) return false;
-  const double threshold_squared = kDotRoundoff * kDotRoundoff * vv * ww;
+  const T threshold_squared = dot_roundoff<T> * dot_roundoff<T> * vv * ww;
   if (std::isnormal(threshold_squared)) return vw * vw > threshold_squared;
-  return vw > kDotRoundoff * std::sqrt(vv) * std::sqrt(ww);
+  return vw > dot_roundoff<T> * std::sqrt(vv) * std::sqrt(ww);
 }
 
 /// True if the origin is certainly outside the tetrahedron y[0..3]: for some face, on the
@@ -284,19 +303,20 @@ inline bool separation_certified(double vw, double vv, double ww) {
 /// lies between every face plane and its opposite vertex.) The bound covers the rounding of
 /// the face normal n = e1 × e2 (componentwise within 3u‖e1‖‖e2‖) and of the dot products with
 /// points of norm ≤ 2M, M = max‖y_i‖, with a factor 2 to spare; faces with n = 0 decide nothing.
-inline bool origin_outside_tetrahedron(const std::array<Vec3, 4>& y) {
-  double m = 0;
-  for (const Vec3& p : y)
+template <class T>
+bool origin_outside_tetrahedron(const std::array<Vec3T<T>, 4>& y) {
+  T m = 0;
+  for (const Vec3T<T>& p : y)
     m = std::max(m, p.norm());
   for (int k = 0; k < 4; ++k) {
-    const Vec3& y0 = y[(k + 1) % 4];
-    const Vec3 e1 = y[(k + 2) % 4] - y0, e2 = y[(k + 3) % 4] - y0;
-    const Vec3 n = e1.cross(e2);
-    const double n_norm = n.norm();
+    const Vec3T<T>& y0 = y[(k + 1) % 4];
+    const Vec3T<T> e1 = y[(k + 2) % 4] - y0, e2 = y[(k + 3) % 4] - y0;
+    const Vec3T<T> n = e1.cross(e2);
+    const T n_norm = n.norm();
     if (!(n_norm > 0)) continue;
-    const double bound = 16 * kDotRoundoff * m * (n_norm + e1.norm() * e2.norm());
-    double s_origin = -n.dot(y0);        // the origin's signed distance, times ‖n‖
-    double s_vertex = n.dot(y[k] - y0);  // the opposite vertex's, times ‖n‖
+    const T bound = 16 * dot_roundoff<T> * m * (n_norm + e1.norm() * e2.norm());
+    T s_origin = -n.dot(y0);        // the origin's signed distance, times ‖n‖
+    T s_vertex = n.dot(y[k] - y0);  // the opposite vertex's, times ‖n‖
     if (s_vertex < 0) {
       s_origin = -s_origin;
       s_vertex = -s_vertex;
@@ -313,37 +333,40 @@ inline constexpr int kMaxStalledSteps = 4;
 /// True if the gap ‖v‖² − v·w = vv − vw is positive beyond the rounding of both products
 /// (each within kDotRoundoff of ‖v‖‖w‖ resp. ‖v‖², for ‖w‖² = ww): exact GJK would then
 /// decrease ‖v‖ strictly by adding w, even where the decrease is below double resolution.
-inline bool gap_certified(double vv, double vw, double ww) {
-  return vv - vw > 2 * kDotRoundoff * (vv + std::sqrt(vv * ww));
+template <class T>
+bool gap_certified(T vv, T vw, T ww) {
+  return vv - vw > 2 * dot_roundoff<T> * (vv + std::sqrt(vv * ww));
 }
 
 /// Whether a step that did not decrease ‖v‖ in floating point may still be taken (a stalled
 /// step): the gap is certified, the new point stays in the simplex (so the simplex changes and
-/// v turns), the new ‖v‖² = new_vv is not above vv by more than rounding (relative 1e-12), and
+/// v turns), the new ‖v‖² = new_vv is not above vv by more than rounding (relative 1e-12 in
+/// double, scaled to T's rounding), and
 /// fewer than kMaxStalledSteps stalls came in a row. Near-parallel edges need these steps: the
 /// exact decrease there is a relative 1e-17 per step, while the simplex still moves towards
 /// the feature that decides the answer.
-inline bool may_stall(double vv, double vw, double ww, double new_vv, bool keeps_new_point,
-                      int stalls) {
-  return stalls < kMaxStalledSteps && keeps_new_point && new_vv <= vv * (1 + 1e-12) &&
-         gap_certified(vv, vw, ww);
+template <class T>
+bool may_stall(T vv, T vw, T ww, T new_vv, bool keeps_new_point, int stalls) {
+  return stalls < kMaxStalledSteps && keeps_new_point &&
+         new_vv <= vv * (1 + rounding_scaled<T>(1e-12)) && gap_certified(vv, vw, ww);
 }
 
 /// Raises the lower bound of the distance to v·w/‖v‖ (for v·w > 0, ‖v‖² = vv).
-inline void lower_bound_update(double& lower_bound, double vw, double vv) {
+template <class T>
+void lower_bound_update(T& lower_bound, T vw, T vv) {
   lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
 }
 
 /// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
 /// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
 /// finite (then the query falls back to its fixed first direction).
-template <class A, class B>
-bool centre_difference(const A& a, const B& b, Vec3& out) {
+template <class A, class B, class T>
+bool centre_difference(const A& a, const B& b, Vec3T<T>& out) {
   if constexpr (requires {
-                  { a.vertex_mean() } -> std::convertible_to<Vec3>;
-                  { b.vertex_mean() } -> std::convertible_to<Vec3>;
+                  { a.vertex_mean() } -> std::convertible_to<Vec3T<T>>;
+                  { b.vertex_mean() } -> std::convertible_to<Vec3T<T>>;
                 }) {
-    const Vec3 c = a.vertex_mean() - b.vertex_mean();
+    const Vec3T<T> c = a.vertex_mean() - b.vertex_mean();
     if (!is_finite(c) || is_zero(c)) return false;
     out = c;
     return true;
@@ -362,14 +385,14 @@ bool centre_difference(const A& a, const B& b, Vec3& out) {
 ///
 /// Returns d_0, the direction the start minimised over A − B (the negated direction of the
 /// first support call), or the start's closest point after a warm start (see directions.hpp).
-template <SubAlgorithm Sub, SupportMap A, SupportMap B>
-Vec3 start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
-                   std::span<const SimplexVertex> warm, Simplex& simplex, ClosestOnSimplex& best,
-                   int& support_calls) {
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class T>
+Vec3T<T> start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOptions& options,
+                       std::span<const SimplexVertexT<T>> warm, SimplexT<T>& simplex,
+                       ClosestOnSimplexT<T>& best, int& support_calls) {
   simplex.clear();
-  for (const SimplexVertex& given : warm) {
+  for (const SimplexVertexT<T>& given : warm) {
     if (simplex.full()) break;
-    SimplexVertex v = given;
+    SimplexVertexT<T> v = given;
     if constexpr (requires { a.vertices(); }) {
       if (v.index_a >= 0 && static_cast<std::size_t>(v.index_a) < a.vertices().size())
         v.a = a.vertices()[v.index_a];
@@ -382,17 +405,18 @@ Vec3 start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistanceOpti
     if (is_finite(v.w) && !simplex.contains(v.w)) simplex.push(v);
   }
   if (!simplex.empty()) {
-    Simplex reduced = simplex;
+    SimplexT<T> reduced = simplex;
     if (sub.reduce(reduced, best) && is_finite(best.v)) {
       simplex = reduced;
       return best.v;
     }
   }
-  Vec3 centre;
+  Vec3T<T> centre;
   const bool from_centre =
       options.start == GjkDistanceStart::centre_direction && centre_difference(a, b, centre);
-  const Vec3 search = from_centre ? Vec3(-centre) : options.initial_direction;
-  const SimplexVertex first = minkowski_support(a, b, search);
+  const Vec3T<T> search =
+      from_centre ? Vec3T<T>(-centre) : Vec3T<T>(options.initial_direction.cast<T>());
+  const SimplexVertexT<T> first = minkowski_support(a, b, search);
   support_calls = 1;
   simplex.clear();
   simplex.push(first);
@@ -406,8 +430,9 @@ enum class StepOutcome : std::uint8_t { progressed, stalled, restart, stop };
 
 /// The quantities of one iteration that the step needs: ‖v‖², v·s and ‖s‖² for the support
 /// point s, and whether separation is proven.
+template <class T>
 struct StepInputs {
-  double vv, vw, ww;
+  T vv, vw, ww;
   bool separation_proven;
 };
 
@@ -420,12 +445,13 @@ struct StepVerdict {
 /// Solves the simplex plus the support point `next` with the sub-algorithm and takes the step
 /// (contact, progress, a bounded stall), drops the momentum, or stops; the simplex changes only
 /// once the answer is accepted.
-template <class Sub, class Observer>
-StepVerdict solve_step(const Sub& sub, DistanceQueryState<Observer>& q, const SimplexVertex& next,
-                       const StepInputs& in, bool& accelerated, int& stalls) {
-  Simplex& simplex = q.simplex();
-  ClosestOnSimplex& best = q.best;
-  std::array<Vec3, 4> y = simplex.points();
+template <class Sub, class T, class Observer>
+StepVerdict solve_step(const Sub& sub, DistanceQueryState<T, Observer>& q,
+                       const SimplexVertexT<T>& next, const StepInputs<T>& in, bool& accelerated,
+                       int& stalls) {
+  SimplexT<T>& simplex = q.simplex();
+  ClosestOnSimplexT<T>& best = q.best;
+  std::array<Vec3T<T>, 4> y = simplex.points();
   y[simplex.size()] = next.w;
   const auto s = sub.solve(y, simplex.size() + 1);
   if (!s.found) return {GjkStep::degenerate, DistanceStop{Termination::degenerate_simplex, false}};
@@ -445,7 +471,7 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<Observer>& q, const Si
   // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
   // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
   // an accelerated query drops its momentum instead.
-  auto judge = [&](double new_vv, bool keeps_next) {
+  auto judge = [&](T new_vv, bool keeps_next) {
     if (new_vv < in.vv) return StepOutcome::progressed;
     if (accelerated) return StepOutcome::restart;
     if (may_stall(in.vv, in.vw, in.ww, new_vv, keeps_next, stalls)) return StepOutcome::stalled;
@@ -458,9 +484,9 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<Observer>& q, const Si
   if (full) {
     // Contact is ruled out (by the separation certificate or the tetrahedron test): the
     // closest point lies on one of the faces.
-    Simplex reduced = simplex;
+    SimplexT<T> reduced = simplex;
     reduced.push(next);
-    ClosestOnSimplex candidate;
+    ClosestOnSimplexT<T> candidate;
     if (!detail::reduce_to_closest_face(sub, reduced, candidate))
       return {GjkStep::degenerate, DistanceStop{Termination::degenerate_simplex, false}};
     outcome = judge(candidate.v.squaredNorm(), reduced.contains(next.w));
@@ -492,15 +518,15 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<Observer>& q, const Si
 /// directions.hpp), everything else is shared: the cold or warm start, the stopping tests, the
 /// separation certificate, the sub-algorithm's step, stalls and the momentum restart.
 /// q.out.simplex and q.best hold the answer when it returns.
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions>
-DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVertex> warm,
-                               DistanceQueryState<Observer>& q, Directions& directions) {
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class T, class Observer, class Directions>
+DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVertexT<T>> warm,
+                               DistanceQueryState<T, Observer>& q, Directions& directions) {
   const Sub sub{};
   const GjkDistanceOptions& options = q.options;
-  DistanceResult& out = q.out;
-  Simplex& simplex = q.simplex();
-  ClosestOnSimplex& best = q.best;
-  const Vec3 d0 = start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
+  DistanceResultT<T>& out = q.out;
+  SimplexT<T>& simplex = q.simplex();
+  ClosestOnSimplexT<T>& best = q.best;
+  const Vec3T<T> d0 = start_simplex(sub, a, b, options, warm, simplex, best, out.support_calls);
 
   if (!is_finite(simplex[0].w)) return {Termination::numerical_failure, false};
   // A warm start may begin with a tetrahedron that encloses the origin.
@@ -514,14 +540,14 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
   int stalls = 0;
   bool accelerated = Directions::momentum;
   if constexpr (Directions::momentum) {
-    const double n0 = d0.norm();
-    directions.start(n0 > 0 ? Vec3(d0 / n0 * simplex[0].w.norm()) : best.v, simplex[0].w);
+    const T n0 = d0.norm();
+    directions.start(n0 > 0 ? Vec3T<T>(d0 / n0 * simplex[0].w.norm()) : best.v, simplex[0].w);
   }
 
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
-    const Vec3 v = best.v;
-    const double vv = v.squaredNorm();
-    Vec3 d = v;
+    const Vec3T<T> v = best.v;
+    const T vv = v.squaredNorm();
+    Vec3T<T> d = v;
     if constexpr (Directions::momentum) {
       if (accelerated) {
         d = directions.direction(out.iterations, v);
@@ -532,21 +558,21 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
         }
       }
     }
-    auto trace = [&](const SimplexVertex& w, double vw, GjkStep step) {
+    auto trace = [&](const SimplexVertexT<T>& w, T vw, GjkStep step) {
       q.trace(-d, w, vv, vw, step);
     };
-    const SimplexVertex next = detail::minkowski_support(a, b, -d);
+    const SimplexVertexT<T> next = detail::minkowski_support(a, b, Vec3T<T>(-d));
     ++out.support_calls;
     if (!is_finite(next.w)) {
-      trace(next, NAN, GjkStep::non_finite);
+      trace(next, std::numeric_limits<T>::quiet_NaN(), GjkStep::non_finite);
       return {Termination::numerical_failure, false};
     }
     directions.observe(next.w);
-    const double vw = v.dot(next.w);
-    const double ww = next.w.squaredNorm();
+    const T vw = v.dot(next.w);
+    const T ww = next.w.squaredNorm();
     if (accelerated) {
       // The plane d·x = d·s supports A − B: d·s/‖d‖ is a lower bound of the distance.
-      const double dw = d.dot(next.w), dd = d.squaredNorm();
+      const T dw = d.dot(next.w), dd = d.squaredNorm();
       if (dw > 0) lower_bound_update(q.lower_bound, dw, dd);
       if (!separation_proven && separation_certified(dw, dd, ww)) separation_proven = true;
     } else if (vw > 0) {
@@ -575,7 +601,7 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       separation_proven = true;
 
     const StepVerdict verdict =
-        solve_step(sub, q, next, StepInputs{vv, vw, ww, separation_proven}, accelerated, stalls);
+        solve_step(sub, q, next, StepInputs<T>{vv, vw, ww, separation_proven}, accelerated, stalls);
     const bool last = out.iterations == options.max_iterations;
     trace(next, vw,
           verdict.stop || verdict.step == GjkStep::momentum_restart || !last ? verdict.step
@@ -587,36 +613,39 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
 }
 
 /// Runs the loop on the shapes as given and builds the result in the returned object itself.
-template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions>
-DistanceResult gjk_distance_run_as_given(const A& a, const B& b, const GjkDistanceOptions& options,
-                                         std::span<const SimplexVertex> warm, Observer& observer,
-                                         Directions directions) {
-  DistanceResult out;
-  DistanceQueryState<Observer> q{options, observer, out};
+template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions,
+          class T = shape_scalar_t<A>>
+DistanceResultT<T> gjk_distance_run_as_given(const A& a, const B& b,
+                                             const GjkDistanceOptions& options,
+                                             std::span<const SimplexVertexT<T>> warm,
+                                             Observer& observer, Directions directions) {
+  DistanceResultT<T> out;
+  DistanceQueryState<T, Observer> q{options, observer, out};
   q.finish(gjk_distance_loop<Sub>(a, b, warm, q, directions));
   return out;
 }
 
 /// Runs the query: on the exactly re-centred pair when options.recenter applies to two
-/// polytopes far from the origin (recentred.hpp), else on the shapes as given.
+/// clouds far from the origin (recentred.hpp), else on the shapes as given.
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer,
-          class Directions = PlainDirections>
-DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
-                                std::span<const SimplexVertex> warm, Observer&& observer,
-                                Directions directions = {}) {
+          class Directions = PlainDirections, class T = shape_scalar_t<A>>
+DistanceResultT<T> gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions& options,
+                                    std::span<const SimplexVertexT<T>> warm, Observer&& observer,
+                                    Directions directions = {}) {
   using Traced = std::remove_reference_t<Observer>;
-  if constexpr (std::same_as<A, Polytope> && std::same_as<B, Polytope>) {
-    if (const std::optional<Vec3> t = recentring_of(a, b, options.recenter)) {
-      const Polytope moved_a = a.translated(-*t), moved_b = b.translated(-*t);
+  if constexpr (RecentrableCloud<A> && std::same_as<A, B>) {
+    if (const auto t = recentring_of(a, b, options.recenter)) {
+      const A moved_a = a.translated(-*t), moved_b = b.translated(-*t);
       // Warm-start points are re-read from their indices; points without indices move too.
-      std::vector<SimplexVertex> start(warm.begin(), warm.end());
-      for (SimplexVertex& v : start) {
+      std::vector<SimplexVertexT<T>> start(warm.begin(), warm.end());
+      for (SimplexVertexT<T>& v : start) {
         v.a -= *t;
         v.b -= *t;
       }
-      TranslatedTrace<Traced> moved_trace{observer, *t};
-      DistanceResult out =
-          gjk_distance_run_as_given<Sub>(moved_a, moved_b, options, start, moved_trace, directions);
+      TranslatedTrace<Traced> moved_trace{observer, t->template cast<double>()};
+      DistanceResultT<T> out = gjk_distance_run_as_given<Sub>(
+          moved_a, moved_b, options, std::span<const SimplexVertexT<T>>(start), moved_trace,
+          directions);
       translate_answer(out, *t);
       return out;
     }
@@ -629,10 +658,12 @@ DistanceResult gjk_distance_run(const A& a, const B& b, const GjkDistanceOptions
 /// Distance between two convex shapes given by support maps (both in the same frame), with
 /// sub-algorithm Sub and an observer that receives a trace of every iteration when enabled.
 /// The result's termination says why the loop stopped; on any stop other than `converged` the
-/// answer is the best upper bound found so far (‖v‖ and its witnesses).
+/// answer is the best upper bound found so far (‖v‖ and its witnesses). The query runs in the
+/// shapes' scalar type (double; float or long double for ScalarCloud, scalar_cloud.hpp).
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOptions& options,
-                                 Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_distance_with(const A& a, const B& b,
+                                                     const GjkDistanceOptions& options,
+                                                     Observer&& observer = {}) {
   return detail::gjk_distance_run<Sub>(a, b, options, {}, std::forward<Observer>(observer));
 }
 
@@ -642,15 +673,17 @@ DistanceResult gjk_distance_with(const A& a, const B& b, const GjkDistanceOption
 /// detail::start_simplex); a usable start costs no support call. Same answer and termination
 /// vocabulary as the cold query, usually in fewer iterations when the pair moved little.
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_distance_warm_with(const A& a, const B& b, std::span<const SimplexVertex> start,
-                                      const GjkDistanceOptions& options, Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_distance_warm_with(
+    const A& a, const B& b, std::span<const SimplexVertexT<shape_scalar_t<A>>> start,
+    const GjkDistanceOptions& options, Observer&& observer = {}) {
   return detail::gjk_distance_run<Sub>(a, b, options, start, std::forward<Observer>(observer));
 }
 
 /// `gjk-johnson`: GJK distance with Johnson's sub-algorithm.
 template <SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_distance(const A& a, const B& b, const GjkDistanceOptions& options = {},
-                            Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_distance(const A& a, const B& b,
+                                                const GjkDistanceOptions& options = {},
+                                                Observer&& observer = {}) {
   return gjk_distance_with<JohnsonSubAlgorithm>(a, b, options, std::forward<Observer>(observer));
 }
 

@@ -31,33 +31,38 @@ namespace gjklab {
 
 /// Nesterov-accelerated GJK distance with sub-algorithm Sub (see the file comment).
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_nesterov_with(const A& a, const B& b, const GjkNesterovOptions& options,
-                                 Observer&& observer = {}) {
-  return detail::gjk_distance_run<Sub>(a, b, options, {}, std::forward<Observer>(observer),
-                                       NesterovDirections{options.normalize_direction});
+DistanceResultT<shape_scalar_t<A>> gjk_nesterov_with(const A& a, const B& b,
+                                                     const GjkNesterovOptions& options,
+                                                     Observer&& observer = {}) {
+  return detail::gjk_distance_run<Sub>(
+      a, b, options, {}, std::forward<Observer>(observer),
+      NesterovDirectionsT<shape_scalar_t<A>>{options.normalize_direction});
 }
 
 /// `gjk-nesterov`: Nesterov-accelerated GJK distance with the signed-volumes sub-algorithm.
 template <SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_nesterov(const A& a, const B& b, const GjkNesterovOptions& options = {},
-                            Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_nesterov(const A& a, const B& b,
+                                                const GjkNesterovOptions& options = {},
+                                                Observer&& observer = {}) {
   return gjk_nesterov_with<SignedVolumesSubAlgorithm>(a, b, options,
                                                       std::forward<Observer>(observer));
 }
 
 /// Polyak-accelerated GJK distance with sub-algorithm Sub (see the file comment).
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_polyak_with(const A& a, const B& b, const GjkDistanceOptions& options,
-                               Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_polyak_with(const A& a, const B& b,
+                                                   const GjkDistanceOptions& options,
+                                                   Observer&& observer = {}) {
   return detail::gjk_distance_run<Sub>(a, b, options, {}, std::forward<Observer>(observer),
-                                       PolyakDirections{});
+                                       PolyakDirectionsT<shape_scalar_t<A>>{});
 }
 
 /// `gjk-polyak`: Polyak-accelerated GJK distance with the signed-volumes sub-algorithm (the
 /// sub-algorithm of gjk-nesterov, so that the two momenta compare on equal terms).
 template <SupportMap A, SupportMap B, class Observer = NoTrace>
-DistanceResult gjk_polyak(const A& a, const B& b, const GjkDistanceOptions& options = {},
-                          Observer&& observer = {}) {
+DistanceResultT<shape_scalar_t<A>> gjk_polyak(const A& a, const B& b,
+                                              const GjkDistanceOptions& options = {},
+                                              Observer&& observer = {}) {
   return gjk_polyak_with<SignedVolumesSubAlgorithm>(a, b, options,
                                                     std::forward<Observer>(observer));
 }

@@ -20,32 +20,42 @@
 namespace gjklab {
 
 /// All cofactors of a simplex of up to four points, indexed by subset bitmask (bit i ↔ y_i).
-struct JohnsonCofactors {
-  std::array<std::array<double, 4>, 16> delta{};  ///< delta[X][i] = Δ_i(X) for i ∈ X
-  std::array<double, 16> total{};                 ///< total[X] = Δ(X)
+template <class T>
+struct JohnsonCofactorsT {
+  std::array<std::array<T, 4>, 16> delta{};  ///< delta[X][i] = Δ_i(X) for i ∈ X
+  std::array<T, 16> total{};                 ///< total[X] = Δ(X)
 };
+using JohnsonCofactors = JohnsonCofactorsT<double>;
 
-struct JohnsonSolution {
-  bool found = false;               ///< false when no subset passed both tests
-  std::uint8_t subset = 0;          ///< bitmask of the chosen sub-simplex X
-  std::array<double, 4> weights{};  ///< barycentric weights λ_i = Δ_i(X)/Δ(X); 0 outside X
-  Vec3 closest = Vec3::Zero();      ///< v = Σ λ_i y_i
+template <class T>
+struct JohnsonSolutionT {
+  bool found = false;                   ///< false when no subset passed both tests
+  std::uint8_t subset = 0;              ///< bitmask of the chosen sub-simplex X
+  std::array<T, 4> weights{};           ///< barycentric weights λ_i = Δ_i(X)/Δ(X); 0 outside X
+  Vec3T<T> closest = Vec3T<T>::Zero();  ///< v = Σ λ_i y_i
 };
+using JohnsonSolution = JohnsonSolutionT<double>;
+
+// Each function is defined for T = float, double and long double (johnson.cpp).
 
 /// Computes every cofactor Δ_i(X) of the simplex y[0 … count−1] (count in 1…4).
-JohnsonCofactors johnson_cofactors(const std::array<Vec3, 4>& y, int count);
+template <class T>
+JohnsonCofactorsT<T> johnson_cofactors(const std::array<Vec3T<T>, 4>& y, int count);
 
 /// True if subset X passes Johnson's two tests for the simplex of `count` points.
-bool johnson_subset_is_valid(const JohnsonCofactors& c, std::uint8_t subset, int count);
+template <class T>
+bool johnson_subset_is_valid(const JohnsonCofactorsT<T>& c, std::uint8_t subset, int count);
 
 /// True if every cofactor of subset X is positive: Δ(X) > 0 and Δ_i(X) > 0 for i ∈ X, i.e.
 /// the point of aff(X) closest to the origin lies in the relative interior of conv(X).
-bool johnson_subset_has_positive_cofactors(const JohnsonCofactors& c, std::uint8_t subset,
+template <class T>
+bool johnson_subset_has_positive_cofactors(const JohnsonCofactorsT<T>& c, std::uint8_t subset,
                                            int count);
 
 /// Johnson's sub-algorithm: tests the subsets in order of increasing size (then increasing
 /// mask) and returns the first that passes, with its weights and closest point.
-JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count);
+template <class T>
+JohnsonSolutionT<T> johnson_closest_point(const std::array<Vec3T<T>, 4>& y, int count);
 
 /// Johnson's sub-algorithm with the backup procedure of van den Bergen ("A fast and robust
 /// GJK implementation for collision detection of convex objects", J. Graphics Tools 4(2),
@@ -55,7 +65,8 @@ JohnsonSolution johnson_closest_point(const std::array<Vec3, 4>& y, int count);
 /// v(X) = Σ_{i∈X} (Δ_i(X)/Δ(X)) y_i has the smallest ‖v(X)‖², the first in Johnson's order
 /// (size, then mask) on ties. Always found for finite points. `used_backup` (optional) tells
 /// whether the backup decided.
-JohnsonSolution johnson_closest_point_with_backup(const std::array<Vec3, 4>& y, int count,
-                                                  bool* used_backup = nullptr);
+template <class T>
+JohnsonSolutionT<T> johnson_closest_point_with_backup(const std::array<Vec3T<T>, 4>& y, int count,
+                                                      bool* used_backup = nullptr);
 
 }  // namespace gjklab

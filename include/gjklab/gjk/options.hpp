@@ -13,6 +13,34 @@
 
 namespace gjklab {
 
+/// The floating-point type a GJK query (gjk-bool, the distance variants, EPA) runs in. The
+/// queries are templates on the scalar type of their shapes; a study in float or long double
+/// runs them on the clouds rounded to that type (geometry/scalar_cloud.hpp).
+enum class ScalarPrecision : std::uint8_t {
+  single_float,  ///< "float": IEEE binary32, what game and robotics engines run GJK in
+  double_float,  ///< "double": IEEE binary64, the default
+  long_double,   ///< "long double": x87 80-bit extended precision on x86-64
+};
+
+constexpr std::string_view to_string(ScalarPrecision p) {
+  switch (p) {
+    case ScalarPrecision::single_float:
+      return "float";
+    case ScalarPrecision::double_float:
+      return "double";
+    case ScalarPrecision::long_double:
+      return "long double";
+  }
+  return "unknown";
+}
+
+inline std::optional<ScalarPrecision> precision_from_string(std::string_view name) {
+  for (ScalarPrecision p : {ScalarPrecision::single_float, ScalarPrecision::double_float,
+                            ScalarPrecision::long_double})
+    if (to_string(p) == name) return p;
+  return std::nullopt;
+}
+
 /// How `gjk-bool` chooses its first search direction and first simplex point.
 ///
 /// The centre starts use c = c_A − c_B, the difference of the shapes' interior points (for a

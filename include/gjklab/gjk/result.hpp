@@ -1,6 +1,8 @@
 // Result structs shared by all algorithms: one query, one input, one result.
 #pragma once
 
+#include <type_traits>
+
 #include "gjklab/geometry/types.hpp"
 #include "gjklab/gjk/simplex.hpp"
 #include "gjklab/gjk/termination.hpp"
@@ -15,22 +17,45 @@ struct BooleanResult {
   Termination termination = Termination::converged;
 };
 
-/// Answer of a distance query.
-struct DistanceResult {
-  bool intersect = false;         ///< closed shapes share a point (within the contact tolerance)
-  double distance = 0;            ///< Euclidean distance (length units); 0 when intersecting
-  Vec3 witness_a = Vec3::Zero();  ///< point of A closest to B (world frame)
-  Vec3 witness_b = Vec3::Zero();  ///< point of B closest to A; witness_a − witness_b = v
-  Vec3 closest = Vec3::Zero();    ///< v: the point of A − B closest to the origin
+/// Answer of a distance query, in the query's scalar type T (DistanceResult: double).
+template <class T>
+struct DistanceResultT {
+  bool intersect = false;  ///< closed shapes share a point (within the contact tolerance)
+  T distance = 0;          ///< Euclidean distance (length units); 0 when intersecting
+  Vec3T<T> witness_a = Vec3T<T>::Zero();  ///< point of A closest to B (world frame)
+  Vec3T<T> witness_b = Vec3T<T>::Zero();  ///< point of B closest to A; witness_a − witness_b = v
+  Vec3T<T> closest = Vec3T<T>::Zero();    ///< v: the point of A − B closest to the origin
   /// Best lower bound of the distance seen, max(0, v·w/‖v‖) over the iterations; the true
   /// distance lies in [lower_bound, distance] up to rounding.
-  double lower_bound = 0;
+  T lower_bound = 0;
   /// The final simplex (for penetration-depth algorithms that start from it, and for traces).
-  Simplex simplex;
+  SimplexT<T> simplex;
   int iterations = 0;
   int support_calls = 0;
   Termination termination = Termination::converged;
 };
+using DistanceResult = DistanceResultT<double>;
+
+/// The answer in double (exact from float; long double rounded to nearest).
+template <class T>
+DistanceResult to_double(const DistanceResultT<T>& r) {
+  if constexpr (std::is_same_v<T, double>) {
+    return r;
+  } else {
+    DistanceResult out;
+    out.intersect = r.intersect;
+    out.distance = static_cast<double>(r.distance);
+    out.witness_a = r.witness_a.template cast<double>();
+    out.witness_b = r.witness_b.template cast<double>();
+    out.closest = r.closest.template cast<double>();
+    out.lower_bound = static_cast<double>(r.lower_bound);
+    out.simplex = to_double(r.simplex);
+    out.iterations = r.iterations;
+    out.support_calls = r.support_calls;
+    out.termination = r.termination;
+    return out;
+  }
+}
 
 /// Answer of a penetration-depth query (EPA and the depth peers).
 ///
@@ -40,20 +65,23 @@ struct DistanceResult {
 /// B: moving B by depth·normal (or A by −depth·normal) brings the shapes into touching
 /// contact, so for a shallow overlap it points from A towards B. For separated pairs the
 /// same convention gives normal = (witness_b − witness_a) / distance.
-struct PenetrationResult {
+template <class T>
+struct PenetrationResultT {
   bool intersect = false;  ///< closed shapes share a point (touching counts as intersecting)
   /// Distance when separated (the GJK distance for EPA); 0 when intersecting.
-  double distance = 0;
+  T distance = 0;
   /// Penetration depth (length units) when intersecting; 0 when separated.
-  double depth = 0;
-  Vec3 normal = Vec3::UnitX();  ///< unit vector, see above; never NaN
+  T depth = 0;
+  Vec3T<T> normal = Vec3T<T>::UnitX();  ///< unit vector, see above; never NaN
   /// Intersecting: the deepest points, witness_a − witness_b = depth·normal.
   /// Separated: the closest points, witness_b − witness_a = distance·normal.
-  Vec3 witness_a = Vec3::Zero();
-  Vec3 witness_b = Vec3::Zero();
+  Vec3T<T> witness_a = Vec3T<T>::Zero();
+  Vec3T<T> witness_b = Vec3T<T>::Zero();
   int iterations = 0;     ///< main-loop iterations of the depth phase (see each algorithm)
   int support_calls = 0;  ///< Minkowski support evaluations of the whole query
   Termination termination = Termination::converged;
 };
+
+using PenetrationResult = PenetrationResultT<double>;
 
 }  // namespace gjklab

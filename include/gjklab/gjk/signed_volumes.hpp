@@ -43,6 +43,8 @@ namespace gjklab {
 
 /// The point of conv(y[0 … count−1]) (count in 1…4) closest to the origin by signed volumes.
 /// Always found (a degenerate simplex reduces to its faces, edges or points).
-SubsimplexSolution signed_volumes_closest_point(const std::array<Vec3, 4>& y, int count);
+/// Defined for T = float, double and long double.
+template <class T>
+SubsimplexSolutionT<T> signed_volumes_closest_point(const std::array<Vec3T<T>, 4>& y, int count);
 
 }  // namespace gjklab

@@ -6,38 +6,47 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab {
 
-struct SimplexVertex {
-  Vec3 w = Vec3::Zero();  ///< w = a − b, a point of the Minkowski difference
-  Vec3 a = Vec3::Zero();  ///< support point of A
-  Vec3 b = Vec3::Zero();  ///< support point of B
+/// A simplex point with scalar type T (double unless a query runs in another precision).
+template <class T>
+struct SimplexVertexT {
+  Vec3T<T> w = Vec3T<T>::Zero();  ///< w = a − b, a point of the Minkowski difference
+  Vec3T<T> a = Vec3T<T>::Zero();  ///< support point of A
+  Vec3T<T> b = Vec3T<T>::Zero();  ///< support point of B
   /// Indices of a and b in their polytopes' vertex lists (−1 for shapes without indices).
   std::int32_t index_a = -1;
   std::int32_t index_b = -1;
 };
 
-class Simplex {
+using SimplexVertex = SimplexVertexT<double>;
+
+template <class T>
+class SimplexT {
  public:
+  using Vertex = SimplexVertexT<T>;
+  using Point = Vec3T<T>;
+
   static constexpr int kCapacity = 4;
 
   int size() const { return size_; }
   bool empty() const { return size_ == 0; }
   bool full() const { return size_ == kCapacity; }
-  const SimplexVertex& operator[](int i) const { return vertices_[i]; }
+  const Vertex& operator[](int i) const { return vertices_[i]; }
   /// The points in order (oldest first): e.g. the start of a warm-started query.
-  std::span<const SimplexVertex> vertices() const {
+  std::span<const Vertex> vertices() const {
     return {vertices_.data(), static_cast<std::size_t>(size_)};
   }
 
   /// The points w_i in order, stored contiguously (w_i = (*this)[i].w): the input of the
   /// sub-algorithms, read on every iteration without gathering them from the 80-byte vertices.
-  const std::array<Vec3, kCapacity>& points() const { return points_; }
+  const std::array<Point, kCapacity>& points() const { return points_; }
 
-  void push(const SimplexVertex& v) {
+  void push(const Vertex& v) {
     points_[size_] = v.w;
     vertices_[size_++] = v;
   }
@@ -58,26 +67,52 @@ class Simplex {
   }
 
   /// True if w equals (bitwise) one of the simplex points.
-  bool contains(const Vec3& w) const {
+  bool contains(const Point& w) const {
     for (int i = 0; i < size_; ++i)
       if (points_[i] == w) return true;
     return false;
   }
 
   /// Largest ‖w_i‖² over the simplex points: the scale that rounding errors refer to.
-  double max_norm_squared() const {
-    double m = 0;
+  T max_norm_squared() const {
+    T m = 0;
     for (int i = 0; i < size_; ++i)
       m = std::max(m, points_[i].squaredNorm());
     return m;
   }
 
  private:
-  std::array<SimplexVertex, kCapacity> vertices_{};
+  std::array<Vertex, kCapacity> vertices_{};
   // Zeroed explicitly: `{}` leaves Eigen vectors uninitialised, and a copy of the simplex reads
   // the unused slots too.
-  std::array<Vec3, kCapacity> points_{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  std::array<Point, kCapacity> points_{Point::Zero(), Point::Zero(), Point::Zero(), Point::Zero()};
   int size_ = 0;
 };
+
+using Simplex = SimplexT<double>;
+
+/// The simplex in double (exact from float; long double points are rounded to nearest): what
+/// traces and results hold whatever the query's precision.
+template <class T>
+SimplexVertex to_double(const SimplexVertexT<T>& v) {
+  SimplexVertex out;
+  out.w = v.w.template cast<double>();
+  out.a = v.a.template cast<double>();
+  out.b = v.b.template cast<double>();
+  out.index_a = v.index_a;
+  out.index_b = v.index_b;
+  return out;
+}
+template <class T>
+Simplex to_double(const SimplexT<T>& s) {
+  if constexpr (std::is_same_v<T, double>) {
+    return s;
+  } else {
+    Simplex out;
+    for (const auto& v : s.vertices())
+      out.push(to_double(v));
+    return out;
+  }
+}
 
 }  // namespace gjklab

@@ -23,30 +23,36 @@ namespace gjklab {
 /// Johnson's sub-algorithm with van den Bergen's backup procedure (see
 /// johnson_closest_point_with_backup): never undecided for finite points.
 struct JohnsonBackupSubAlgorithm {
-  auto solve(const std::array<Vec3, 4>& y, int count) const {
+  template <class T>
+  auto solve(const std::array<Vec3T<T>, 4>& y, int count) const {
     return johnson_closest_point_with_backup(y, count);
   }
-  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+  template <class T>
+  bool reduce(SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) const {
     return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
 /// The signed-volumes sub-algorithm of Montanari, Petrinic and Barbieri (2017).
 struct SignedVolumesSubAlgorithm {
-  auto solve(const std::array<Vec3, 4>& y, int count) const {
+  template <class T>
+  auto solve(const std::array<Vec3T<T>, 4>& y, int count) const {
     return signed_volumes_closest_point(y, count);
   }
-  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+  template <class T>
+  bool reduce(SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) const {
     return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };
 
 /// The Voronoi-region case analysis (Ericson, Real-Time Collision Detection, ch. 5).
 struct VoronoiSubAlgorithm {
-  auto solve(const std::array<Vec3, 4>& y, int count) const {
+  template <class T>
+  auto solve(const std::array<Vec3T<T>, 4>& y, int count) const {
     return voronoi_closest_point(y, count);
   }
-  bool reduce(Simplex& simplex, ClosestOnSimplex& out) const {
+  template <class T>
+  bool reduce(SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) const {
     return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
   }
 };

@@ -10,11 +10,13 @@
 namespace gjklab {
 
 /// The sub-simplex whose convex hull holds the point of a simplex closest to the origin.
-struct SubsimplexSolution {
-  bool found = false;               ///< false when the sub-algorithm could not decide
-  std::uint8_t subset = 0;          ///< bitmask of the kept points (bit i ↔ y_i)
-  std::array<double, 4> weights{};  ///< barycentric weights λ_i of the kept points; 0 outside
-  Vec3 closest = Vec3::Zero();      ///< v = Σ λ_i y_i
+template <class T>
+struct SubsimplexSolutionT {
+  bool found = false;                   ///< false when the sub-algorithm could not decide
+  std::uint8_t subset = 0;              ///< bitmask of the kept points (bit i ↔ y_i)
+  std::array<T, 4> weights{};           ///< barycentric weights λ_i of the kept points; 0 outside
+  Vec3T<T> closest = Vec3T<T>::Zero();  ///< v = Σ λ_i y_i
 };
+using SubsimplexSolution = SubsimplexSolutionT<double>;
 
 }  // namespace gjklab

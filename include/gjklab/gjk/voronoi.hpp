@@ -26,6 +26,8 @@ namespace gjklab {
 
 /// The point of conv(y[0 … count−1]) (count in 1…4) closest to the origin by Voronoi regions.
 /// Always found.
-SubsimplexSolution voronoi_closest_point(const std::array<Vec3, 4>& y, int count);
+/// Defined for T = float, double and long double.
+template <class T>
+SubsimplexSolutionT<T> voronoi_closest_point(const std::array<Vec3T<T>, 4>& y, int count);
 
 }  // namespace gjklab
