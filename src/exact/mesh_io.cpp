@@ -50,15 +50,19 @@ void check_vertex_count(const std::string& name, int line, const std::string& te
                              " bytes can hold");
 }
 
-/// A vertex property line "property TYPE NAME": x, y and z must be scalars of a floating-point
-/// type, because CGAL's reader casts them to float or double properties without checking (a
-/// list, or an integer type such as int32, made it call through a null pointer).
+/// A vertex property line, "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME" (words
+/// after the name are ignored, as CGAL's reader ignores them): x, y and z must be scalars of a
+/// floating-point type, because CGAL's reader casts them to float or double properties without
+/// checking (a list, or an integer type such as int32, made it call through a null pointer).
 void check_ply_coordinate_type(const std::string& name, int number,
                                const std::vector<std::string>& w) {
-  const std::string& property = w.back();
+  const bool list = w[1] == "list";
+  const std::size_t name_word = list ? 4 : 2;
+  if (w.size() <= name_word) return;  // CGAL refuses the line itself
+  const std::string& property = w[name_word];
   if (property != "x" && property != "y" && property != "z") return;
   const std::string where = name + ":" + std::to_string(number) + ": vertex property '" + property;
-  if (w[1] == "list") throw std::runtime_error(where + "' is a list; coordinates must be scalars");
+  if (list) throw std::runtime_error(where + "' is a list; coordinates must be scalars");
   const std::string& type = w[1];
   if (type != "float" && type != "float32" && type != "double" && type != "float64")
     throw std::runtime_error(where + "' has type '" + type +
@@ -137,8 +141,15 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
   if (ext == ".off") check_off_header(file, file_size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  if (!CGAL::IO::read_polygon_soup(name, points, faces))
-    throw std::runtime_error(name + ": cannot read the mesh (malformed file?)");
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(name, points, faces);
+  } catch (const std::exception& e) {
+    // CGAL's readers let the standard library's exceptions through: a PLY list whose count is
+    // negative (a signed type) becomes a resize to 2^64 - 1 elements and std::length_error.
+    throw std::runtime_error(name + ": cannot read the mesh (" + e.what() + ")");
+  }
+  if (!read) throw std::runtime_error(name + ": cannot read the mesh (malformed file?)");
   std::vector<Vec3> cloud;
   cloud.reserve(points.size());
   for (const Point& p : points)

@@ -8,6 +8,7 @@
 
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
 using namespace gjklab;
@@ -57,6 +58,39 @@ TEST_CASE("PLY with z declared int32: a clear error with the line, not a call th
   // only a disabled assertion behind it), so an integer z was a null pointer dereference.
   CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_z_as_int32.ply")),
                     Catch::Contains("ply_z_as_int32.ply:6") && Catch::Contains("int32"));
+}
+
+TEST_CASE("PLY with y declared uint8 and more words on its line: the type of the third word is "
+          "checked, as CGAL reads it",
+          "[regression][hostile][fuzz]") {
+  // "property uint8 y<VT>property float z": CGAL reads the type and the name and ignores the
+  // rest; the first check took the line's last word as the name and let the uint8 y through.
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_y_as_uint8_then_more_words.ply")),
+                    Catch::Contains("ply_y_as_uint8_then_more_words.ply:5") &&
+                        Catch::Contains("uint8"));
+}
+
+TEST_CASE("PLY with a face list count of -1 (signed char): a clear error, not std::length_error "
+          "out of the program",
+          "[regression][hostile][fuzz]") {
+  // CGAL's reader resizes the list to the count, here 2^64 - 1, and lets std::length_error
+  // through; `gjklab query` catches InputError only.
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_face_list_count_minus_1.ply")),
+                    Catch::Contains("ply_face_list_count_minus_1.ply") &&
+                        Catch::Contains("cannot read the mesh"));
+  CHECK_THROWS_AS(experiment::read_point_file(hostile("ply_face_list_count_minus_1.ply")),
+                  experiment::InputError);
+}
+
+TEST_CASE("archive with one byte of /cases/shape_a's enum type flipped: an error, and the "
+          "program survives libhdf5's out-of-bounds read",
+          "[regression][hostile][fuzz]") {
+  // Byte 9430 of a small traced archive, 0 -> 0x43: opening the dataset makes libhdf5's
+  // H5T_copy read 68 MB from a 19-byte buffer (an upstream bug), which segfaults. The isolated
+  // reader meets it in its child and reports the file as corrupt.
+  CHECK_THROWS_AS(experiment::read_archive_isolated(
+                      hostile("archive_shape_a_enum_type_byte_flipped_hdf5_overread.h5")),
+                  experiment::ArchiveError);
 }
 
 #ifdef GJKLAB_HAVE_FCL
