@@ -69,15 +69,12 @@ constexpr int kExponents[] = {0,   -1,   -2,   -10,   -26,   -52,  10, 26, 52, 1
                               500, -500, 1000, -1000, -1070, 1020, 3,  -3, 20, -20, 60,
                               -60, 200,  -200, 300,   -300,  0,    0,  0,  0,  0};
 
-double decode_coordinate(ByteReader& in, const std::vector<double>& earlier) {
+double decode_any(ByteReader& in, const std::vector<double>& earlier) {
   const std::uint8_t tag = in.byte();
   const double previous = earlier.empty() ? 0.0 : earlier.back();
   switch (tag % 8) {
-    case 0: {
-      const double x = in.raw_double();
-      // The readers refuse non-finite coordinates; the largest finite ones stand in for them.
-      return std::isfinite(x) ? x : std::copysign(kMax, x);
-    }
+    case 0:
+      return in.raw_double();
     case 1: {
       const double x = kPalette[in.byte() % std::size(kPalette)];
       return (tag & 8) ? -x : x;
@@ -101,6 +98,13 @@ double decode_coordinate(ByteReader& in, const std::vector<double>& earlier) {
     default:
       return static_cast<std::int8_t>(in.byte());
   }
+}
+
+/// One coordinate. The readers refuse non-finite coordinates, so the largest finite ones stand
+/// in for infinities and NaNs (raw bytes, or a small integer scaled beyond the double range).
+double decode_coordinate(ByteReader& in, const std::vector<double>& earlier) {
+  const double x = decode_any(in, earlier);
+  return std::isfinite(x) ? x : std::copysign(kMax, x);
 }
 
 std::vector<Vec3> decode_cloud(ByteReader& in, int n, std::vector<double>& earlier) {
