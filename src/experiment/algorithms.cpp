@@ -133,6 +133,18 @@ struct PolyakQuery {
   }
 };
 
+template <class Prepared, class Make>
+std::shared_ptr<const Prepared> prepared(const Polytope& shape, Make&& make);
+
+/// The cloud rounded to T, made once per polytope and thread (see prepared() below), so that
+/// repeated and timed queries on a shape do not pay for the conversion.
+template <class T>
+std::shared_ptr<const ScalarCloud<T>> rounded(const Polytope& shape) {
+  return prepared<ScalarCloud<T>>(shape, [](const Polytope& p) {
+    return std::make_shared<const ScalarCloud<T>>(p.vertices());
+  });
+}
+
 /// The radii rounded to T (and back to double, exactly).
 template <class T>
 SweptRadii rounded_radii(const SweptRadii& r) {
@@ -142,7 +154,8 @@ SweptRadii rounded_radii(const SweptRadii& r) {
 template <class Query, class T>
 Outcome distance_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
                     const AlgorithmOptions& o, TraceRecorder* trace) {
-  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  const auto pa = rounded<T>(a), pb = rounded<T>(b);
+  const ScalarCloud<T>&ca = *pa, &cb = *pb;
   DistanceResult d = trace ? to_double(Query::run(ca, cb, o, *trace))
                            : to_double(Query::run(ca, cb, o, NoTrace{}));
   if (r.any()) d = swept_distance(d, rounded_radii<T>(r));
@@ -152,7 +165,8 @@ Outcome distance_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
 template <class T>
 Outcome gjk_bool_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
                     const AlgorithmOptions& o, TraceRecorder* trace) {
-  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  const auto pa = rounded<T>(a), pb = rounded<T>(b);
+  const ScalarCloud<T>&ca = *pa, &cb = *pb;
   auto query = [&](const auto& sa, const auto& sb) {
     return trace ? gjk_intersect(sa, sb, o.gjk_boolean, *trace)
                  : gjk_intersect(sa, sb, o.gjk_boolean);
@@ -166,7 +180,8 @@ template <class T>
 Outcome epa_in(const Polytope& a, const Polytope& b, const SweptRadii& r, const AlgorithmOptions& o,
                TraceRecorder*) {
   thread_local EpaPolytopeT<T> workspace;  // buffers reused across queries on this thread
-  const ScalarCloud<T> ca(a.vertices()), cb(b.vertices());
+  const auto pa = rounded<T>(a), pb = rounded<T>(b);
+  const ScalarCloud<T>&ca = *pa, &cb = *pb;
   const EpaResult core = to_double(gjk_epa(ca, cb, o.gjk_distance, o.epa, workspace));
   Outcome out =
       from_penetration(r.any() ? swept_penetration(core, rounded_radii<T>(r)) : core, true);
@@ -697,19 +712,15 @@ BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&&
   return t;
 }
 
-/// The loop of a GJK query in float or long double: the pairs are rounded to T before the
-/// timed loop (as the peers' prepared shapes), so the loop times the queries alone.
+template <class Prepare, class Query>
+BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
+                               Query&& query);
+
+/// The loop of a GJK query in float or long double: the shapes rounded to T are prepared once
+/// per polytope (rounded<T>, as the peers' prepared shapes), so the loop times the queries.
 template <class T, class Query>
 BenchTally rounded_bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
-  std::vector<std::pair<ScalarCloud<T>, ScalarCloud<T>>> clouds;
-  clouds.reserve(pairs.size());
-  for (const BenchPair& p : pairs)
-    clouds.emplace_back(ScalarCloud<T>(p.a->vertices()), ScalarCloud<T>(p.b->vertices()));
-  BenchTally t;
-  for (int r = 0; r < repetitions; ++r)
-    for (const auto& [a, b] : clouds)
-      tally(t, query(a, b));
-  return t;
+  return prepared_bench_loop(pairs, repetitions, rounded<T>, query);
 }
 
 /// A GJK query's loop in the precision of the options (`query` takes shapes of any scalar).
