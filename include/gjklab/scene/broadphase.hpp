@@ -1,0 +1,101 @@
+// 3D broad phases over axis-aligned bounding boxes (world frame, length units).
+//
+// Every broad phase answers the same question: the set of pairs (i, j), i < j, whose closed
+// boxes overlap (touching counts), returned sorted, so that the three are interchangeable and
+// the tests compare them with ==. Pairs of two static bodies are the caller's to drop.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "gjklab/geometry/types.hpp"
+
+namespace gjklab::scene {
+
+struct Aabb {
+  Vec3 lower = Vec3::Zero();
+  Vec3 upper = Vec3::Zero();
+  bool overlaps(const Aabb& o) const {
+    return lower.x() <= o.upper.x() && o.lower.x() <= upper.x() && lower.y() <= o.upper.y() &&
+           o.lower.y() <= upper.y() && lower.z() <= o.upper.z() && o.lower.z() <= upper.z();
+  }
+};
+
+using BodyPair = std::pair<std::uint32_t, std::uint32_t>;
+
+enum class BroadPhaseKind : std::uint8_t {
+  all_pairs,       ///< every pair tested: the reference, O(n²)
+  grid,            ///< uniform 3D grid of hashed cells
+  sweep_and_prune, ///< sort on the lower x bound, sweep
+};
+
+constexpr std::string_view to_string(BroadPhaseKind k) {
+  switch (k) {
+    case BroadPhaseKind::all_pairs:
+      return "all-pairs";
+    case BroadPhaseKind::grid:
+      return "grid";
+    case BroadPhaseKind::sweep_and_prune:
+      return "sap";
+  }
+  return "unknown";
+}
+std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name);
+
+/// The reference: every pair tested.
+void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+
+/// Sweep and prune on x. Keeps the sorted order between calls: in a simulation the order
+/// changes little from frame to frame, and insertion sort then costs about n comparisons.
+class SweepAndPrune {
+ public:
+  void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+
+ private:
+  std::vector<std::uint32_t> order_;
+};
+
+/// Uniform grid of cubic cells of side `cell_size` (length units), hashed (the world is not
+/// bounded). A box goes into every cell it touches; a pair is reported by the one cell that
+/// holds the lower corner of the intersection of the two boxes' cell ranges, so each pair once
+/// without a set. Boxes that would touch more than kMaxCellsPerBox cells (a ground plane) are
+/// kept aside and tested against every box instead.
+class UniformGrid {
+ public:
+  static constexpr std::int64_t kMaxCellsPerBox = 64;
+  /// cell_size ≤ 0: chosen at each call as twice the median box's largest side.
+  explicit UniformGrid(double cell_size = 0) : cell_size_(cell_size) {}
+  void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+  double last_cell_size() const { return used_cell_size_; }
+
+ private:
+  double cell_size_;
+  double used_cell_size_ = 0;
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t body;
+  };
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> large_;
+};
+
+/// One broad phase selected by kind, with the state its kind keeps between frames.
+class BroadPhase {
+ public:
+  explicit BroadPhase(BroadPhaseKind kind, double grid_cell_size = 0)
+      : kind_(kind), grid_(grid_cell_size) {}
+  BroadPhaseKind kind() const { return kind_; }
+  /// The sorted overlapping pairs (i < j) of the boxes.
+  void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+
+ private:
+  BroadPhaseKind kind_;
+  SweepAndPrune sap_;
+  UniformGrid grid_;
+};
+
+}  // namespace gjklab::scene

@@ -1,0 +1,180 @@
+// A world of rigid convex bodies stepped by semi-implicit Euler with a sequential-impulse
+// contact solver. Units are the caller's (the scene files use m, kg, s); frames are world
+// frames unless a name says body.
+//
+// One step, of length dt:
+//  1. Broad phase: world AABBs of every body, grown by the contact margin and by the distance
+//     the body can travel in the step, give the candidate pairs (static pairs dropped).
+//  2. Narrow phase: per candidate pair, GJK distance between the two hulls in world
+//     coordinates, warm-started from the pair's final simplex of the previous step (the simplex
+//     stores vertex indices, re-evaluated on the moved hulls). Pairs closer than the margin
+//     plus the distance they can close in the step are in contact (speculatively when apart); intersecting pairs go on to EPA for the depth and normal. A contact
+//     manifold of up to four points is built by clipping the incident face against the
+//     reference face (both chosen by the normal); when neither face is aligned with the normal
+//     (edge or vertex contact) the single GJK/EPA point is used.
+//  3. Velocities: v += g dt; then `solver_iterations` passes of sequential impulses on every
+//     contact point (non-penetration with restitution, two-axis Coulomb friction), starting
+//     from the impulses of the matching points of the previous step.
+//  4. Positional correction: a separate pass of pseudo-velocities that push penetrations
+//     deeper than `slop` apart by a fraction `baumgarte` per step; they move the bodies but are
+//     then discarded, so the correction adds no kinetic energy.
+//  5. Positions: x += (v + v_pseudo) dt, q += ½ (ω + ω_pseudo) q dt, renormalised.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/simplex.hpp"
+#include "gjklab/scene/body.hpp"
+#include "gjklab/scene/broadphase.hpp"
+
+namespace gjklab::scene {
+
+/// The distance algorithms the narrow phase can run warm-started, by their registry names.
+enum class NarrowAlgorithm : std::uint8_t {
+  gjk_johnson,         ///< "gjk-johnson"
+  gjk_johnson_backup,  ///< "gjk-johnson-backup"
+  gjk_sv,              ///< "gjk-sv"
+  gjk_voronoi,         ///< "gjk-voronoi"
+};
+constexpr std::string_view to_string(NarrowAlgorithm a) {
+  switch (a) {
+    case NarrowAlgorithm::gjk_johnson:
+      return "gjk-johnson";
+    case NarrowAlgorithm::gjk_johnson_backup:
+      return "gjk-johnson-backup";
+    case NarrowAlgorithm::gjk_sv:
+      return "gjk-sv";
+    case NarrowAlgorithm::gjk_voronoi:
+      return "gjk-voronoi";
+  }
+  return "unknown";
+}
+std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name);
+
+struct WorldSettings {
+  Vec3 gravity = Vec3(0, 0, -9.81);  ///< length/s²
+  double dt = 1.0 / 120.0;           ///< s
+  int solver_iterations = 20;        ///< velocity passes per step (≥ 1)
+  int position_iterations = 4;       ///< pseudo-velocity passes per step (≥ 0)
+  /// Absolute (length units): pairs closer than this get contacts (speculative when apart).
+  double contact_margin = 0.02;
+  /// Absolute (length units): penetration tolerated without positional correction.
+  double slop = 0.002;
+  /// Fraction of the penetration beyond slop removed per step (dimensionless, in [0, 1]).
+  double baumgarte = 0.2;
+  /// Approach speed (length/s) below which restitution is ignored (resting contacts).
+  double restitution_threshold = 0.5;
+  NarrowAlgorithm algorithm = NarrowAlgorithm::gjk_johnson;
+  GjkDistanceOptions gjk{};
+  /// Start each query from the pair's previous simplex (false: every query cold).
+  bool warm_start = true;
+  /// Also run every query cold, only to count its iterations (StepStats::iterations_cold_mean):
+  /// the warm-versus-cold comparison on the same stream, at the price of a second query.
+  bool measure_cold = false;
+  BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
+  double grid_cell_size = 0;  ///< length units; ≤ 0: automatic (see UniformGrid)
+};
+
+/// One contact point between bodies a and b.
+struct Contact {
+  std::uint32_t a = 0, b = 0;
+  Vec3 point = Vec3::Zero();   ///< world, midway between the two surfaces
+  Vec3 normal = Vec3::UnitZ(); ///< unit, from a towards b
+  double depth = 0;            ///< > 0 penetrating, < 0 separated by −depth (speculative)
+  double normal_impulse = 0;   ///< accumulated this step (mass·length/s)
+  double tangent_impulse[2] = {0, 0};
+};
+
+/// What one step did, for the archive's frames table.
+struct StepStats {
+  std::size_t candidate_pairs = 0;  ///< pairs from the broad phase (static pairs dropped)
+  std::size_t narrow_queries = 0;   ///< GJK queries (= candidate pairs)
+  std::size_t epa_queries = 0;      ///< of which went on to EPA (intersecting)
+  std::size_t contacts = 0;         ///< contact points
+  std::int64_t broadphase_ns = 0;   ///< AABBs and broad phase
+  std::int64_t narrowphase_ns = 0;  ///< GJK, EPA and manifolds
+  std::int64_t solver_ns = 0;
+  double iterations_mean = 0;       ///< mean GJK iterations of the queries (as run)
+  double iterations_cold_mean = 0;  ///< the same queries cold (measure_cold only, else 0)
+  std::size_t failed_queries = 0;   ///< GJK or EPA stops other than converged
+};
+
+class World {
+ public:
+  /// Throws std::invalid_argument for settings out of range.
+  explicit World(WorldSettings settings);
+
+  /// Adds a body; returns its index. Bodies are never removed.
+  std::uint32_t add(RigidBody body);
+  std::vector<RigidBody>& bodies() { return bodies_; }
+  const std::vector<RigidBody>& bodies() const { return bodies_; }
+  const WorldSettings& settings() const { return settings_; }
+  double time() const { return time_; }
+
+  /// Advances by settings().dt; returns what the step did.
+  StepStats step();
+
+  /// The contacts of the last step (with their impulses).
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  /// Largest contact depth of the last step (length units; 0 if nothing penetrates).
+  double max_penetration() const;
+
+  double kinetic_energy() const;
+  /// Σ −m g·x over dynamic bodies (0 at the world origin).
+  double potential_energy() const;
+  Vec3 linear_momentum() const;
+  /// About the world origin.
+  Vec3 angular_momentum() const;
+  /// True when every pose and velocity is finite.
+  bool finite() const;
+
+  /// World AABBs of every body grown by `margin` plus the body's sweep_distance (length units).
+  void bounding_boxes(double margin, std::vector<Aabb>& out) const;
+  /// How far any point of body i can travel in one step at its current velocities.
+  double sweep_distance(std::uint32_t i) const;
+
+ private:
+  struct CachedPoint {
+    Vec3 local_a;  ///< contact point in a's body frame
+    double normal_impulse;
+    double tangent_impulse[2];
+  };
+  struct PairCache {
+    std::vector<SimplexVertex> simplex;
+    std::vector<CachedPoint> points;
+    std::uint64_t step = 0;
+  };
+
+  void narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats);
+  void collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepStats& stats,
+               double& iterations, double& iterations_cold);
+  const Polytope& world_hull(std::uint32_t i);
+  void warm_start_impulses(std::size_t first, std::size_t count, const PairCache& cache);
+  void store_impulses(PairCache& cache, std::size_t first, std::size_t count) const;
+  void solve_velocities();
+  void correct_positions(std::vector<Vec3>& dv, std::vector<Vec3>& dw);
+  void integrate(const std::vector<Vec3>& dv, const std::vector<Vec3>& dw);
+
+  WorldSettings settings_;
+  std::vector<RigidBody> bodies_;
+  BroadPhase broad_;
+  double time_ = 0;
+  std::uint64_t step_count_ = 0;
+  std::vector<Aabb> boxes_;
+  std::vector<BodyPair> pairs_;
+  std::vector<Contact> contacts_;
+  /// Per contact: which pair cache it belongs to (by key) to store impulses after solving.
+  std::vector<std::pair<std::uint64_t, std::pair<std::size_t, std::size_t>>> pair_ranges_;
+  std::unordered_map<std::uint64_t, PairCache> cache_;
+  /// World-frame copies of the hulls, rebuilt at most once a step (the GJK queries run on
+  /// them directly so that their simplices carry vertex indices).
+  std::vector<std::optional<Polytope>> world_hulls_;
+  std::vector<std::uint64_t> world_hull_step_;
+};
+
+}  // namespace gjklab::scene

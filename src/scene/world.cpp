@@ -1,0 +1,586 @@
+#include "gjklab/scene/world.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "gjklab/gjk/epa.hpp"
+#include "gjklab/gjk/gjk_distance.hpp"
+#include "gjklab/gjk/subalgorithms.hpp"
+
+namespace gjklab::scene {
+
+std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name) {
+  for (NarrowAlgorithm a : {NarrowAlgorithm::gjk_johnson, NarrowAlgorithm::gjk_johnson_backup,
+                            NarrowAlgorithm::gjk_sv, NarrowAlgorithm::gjk_voronoi})
+    if (to_string(a) == name) return a;
+  return std::nullopt;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+std::int64_t nanoseconds_since(Clock::time_point t0) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count();
+}
+
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+/// Cosine of the largest angle (about 11°) between the contact normal and a face normal for
+/// which the face still counts as the contact feature (manifold by clipping); below it the
+/// contact is an edge or a vertex and gets the single GJK/EPA point.
+constexpr double kFaceAlignment = 0.98;
+/// Points per manifold: four span any face-on-face contact's support polygon well enough.
+constexpr std::size_t kMaxManifoldPoints = 4;
+
+/// Two unit tangents orthogonal to the unit normal n (and to each other).
+void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+  t1 = n.cross(helper).normalized();
+  t2 = n.cross(t1);
+}
+
+/// Sutherland–Hodgman: the part of the polygon `poly` on the side (x − p)·m ≤ 0.
+std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Vec3& p, const Vec3& m) {
+  std::vector<Vec3> out;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& x = poly[i];
+    const Vec3& y = poly[(i + 1) % n];
+    const double sx = (x - p).dot(m), sy = (y - p).dot(m);
+    if (sx <= 0) out.push_back(x);
+    if ((sx <= 0) != (sy <= 0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
+  }
+  return out;
+}
+
+struct ManifoldPoint {
+  Vec3 point;
+  double depth;
+};
+
+/// Keeps at most four points: the deepest, the one farthest from it, the one farthest from
+/// their line, and the one that adds the most area (a greedy cover of the contact polygon).
+std::vector<ManifoldPoint> reduce_points(std::vector<ManifoldPoint> pts) {
+  if (pts.size() <= kMaxManifoldPoints) return pts;
+  std::vector<ManifoldPoint> kept;
+  auto take = [&](auto score) {
+    std::size_t best = 0;
+    double best_score = -1;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const double s = score(pts[i].point, pts[i].depth);
+      if (s > best_score) best_score = s, best = i;
+    }
+    kept.push_back(pts[best]);
+    pts.erase(pts.begin() + static_cast<std::ptrdiff_t>(best));
+  };
+  take([](const Vec3&, double d) { return d + 1e300; });
+  take([&](const Vec3& x, double) { return (x - kept[0].point).squaredNorm(); });
+  take([&](const Vec3& x, double) {
+    return (kept[1].point - kept[0].point).cross(x - kept[0].point).squaredNorm();
+  });
+  // The area x adds to the triangle: the parts of the triangles it forms with the edges it
+  // lies outside of (signed areas against the triangle's own orientation).
+  const Vec3 up = (kept[1].point - kept[0].point).cross(kept[2].point - kept[0].point);
+  take([&](const Vec3& x, double) {
+    double added = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = kept[k].point;
+      const Vec3& q = kept[(k + 1) % 3].point;
+      added += std::max(0.0, -(q - p).cross(x - p).dot(up));
+    }
+    return added;
+  });
+  return kept;
+}
+
+/// The face of `shape` (posed by `rotation`) whose world normal is most aligned with d.
+std::size_t best_face(const ConvexShape& shape, const Mat3& rotation, const Vec3& d,
+                      double& alignment) {
+  const Vec3 body_d = rotation.transpose() * d;
+  std::size_t best = 0;
+  alignment = -2;
+  for (std::size_t f = 0; f < shape.face_normals.size(); ++f) {
+    const double a = shape.face_normals[f].dot(body_d);
+    if (a > alignment) alignment = a, best = f;
+  }
+  return best;
+}
+
+/// A manifold by clipping the incident face against the reference face; the normal it
+/// returns through `normal` is the reference face's (oriented from a to b). Empty when neither
+/// face is aligned with the normal or nothing survives the clipping.
+std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& wa,
+                                         const Mat3& ra, const ConvexShape& sb,
+                                         const Polytope& wb, const Mat3& rb, Vec3& normal,
+                                         double margin) {
+  double align_a = 0, align_b = 0;
+  const std::size_t fa = best_face(sa, ra, normal, align_a);
+  const std::size_t fb = best_face(sb, rb, -normal, align_b);
+  if (std::max(align_a, align_b) < kFaceAlignment) return {};
+  // Prefer a's face on near ties so the choice does not flicker between steps.
+  const bool a_is_reference = align_a + 1e-3 >= align_b;
+  const ConvexShape& rs = a_is_reference ? sa : sb;
+  const ConvexShape& is = a_is_reference ? sb : sa;
+  const Polytope& rw = a_is_reference ? wa : wb;
+  const Polytope& iw = a_is_reference ? wb : wa;
+  const Mat3& rr = a_is_reference ? ra : rb;
+  const auto& ref_loop = rs.faces[a_is_reference ? fa : fb];
+  const auto& inc_loop = is.faces[a_is_reference ? fb : fa];
+  const Vec3 nr = rr * rs.face_normals[a_is_reference ? fa : fb];  // out of the reference body
+  std::vector<Vec3> poly;
+  for (int v : inc_loop) poly.push_back(iw.vertices()[v]);
+  const std::size_t m = ref_loop.size();
+  for (std::size_t k = 0; k < m && !poly.empty(); ++k) {
+    const Vec3& p = rw.vertices()[ref_loop[k]];
+    const Vec3& q = rw.vertices()[ref_loop[(k + 1) % m]];
+    poly = clip(poly, p, (q - p).cross(nr));  // side plane, outward for a loop CCW about nr
+  }
+  const Vec3 on_plane = rw.vertices()[ref_loop[0]];
+  std::vector<ManifoldPoint> pts;
+  for (const Vec3& x : poly) {
+    const double s = (x - on_plane).dot(nr);  // separation above the reference face
+    if (s <= margin) pts.push_back({x - 0.5 * s * nr, -s});
+  }
+  normal = a_is_reference ? nr : Vec3(-nr);
+  return reduce_points(std::move(pts));
+}
+
+template <class Sub>
+DistanceResult run_gjk(const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm,
+                       const GjkDistanceOptions& options) {
+  return warm.empty() ? gjk_distance_with<Sub>(a, b, options)
+                      : gjk_distance_warm_with<Sub>(a, b, warm, options);
+}
+
+DistanceResult run_gjk(NarrowAlgorithm algorithm, const Polytope& a, const Polytope& b,
+                       std::span<const SimplexVertex> warm, const GjkDistanceOptions& options) {
+  switch (algorithm) {
+    case NarrowAlgorithm::gjk_johnson:
+      return run_gjk<JohnsonSubAlgorithm>(a, b, warm, options);
+    case NarrowAlgorithm::gjk_johnson_backup:
+      return run_gjk<JohnsonBackupSubAlgorithm>(a, b, warm, options);
+    case NarrowAlgorithm::gjk_sv:
+      return run_gjk<SignedVolumesSubAlgorithm>(a, b, warm, options);
+    case NarrowAlgorithm::gjk_voronoi:
+      return run_gjk<VoronoiSubAlgorithm>(a, b, warm, options);
+  }
+  return run_gjk<JohnsonSubAlgorithm>(a, b, warm, options);
+}
+
+/// Effective mass denominator of an impulse along unit d at arms ra, rb (1/mass units).
+double inverse_effective_mass(const RigidBody& a, const RigidBody& b, const Mat3& ia,
+                              const Mat3& ib, const Vec3& ra, const Vec3& rb, const Vec3& d) {
+  const Vec3 ca = ra.cross(d), cb = rb.cross(d);
+  return a.inverse_mass + b.inverse_mass + ca.dot(ia * ca) + cb.dot(ib * cb);
+}
+
+void check_settings(const WorldSettings& s) {
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(s.gravity.allFinite(), "gravity must be finite");
+  require(s.dt > 0 && std::isfinite(s.dt), "dt must be positive and finite");
+  require(s.solver_iterations >= 1 && s.solver_iterations <= 1000,
+          "solver_iterations must be in [1, 1000]");
+  require(s.position_iterations >= 0 && s.position_iterations <= 1000,
+          "position_iterations must be in [0, 1000]");
+  require(s.contact_margin >= 0 && std::isfinite(s.contact_margin),
+          "contact_margin must be finite and ≥ 0");
+  require(s.slop >= 0 && std::isfinite(s.slop), "slop must be finite and ≥ 0");
+  require(s.baumgarte >= 0 && s.baumgarte <= 1, "baumgarte must be in [0, 1]");
+  require(s.restitution_threshold >= 0 && std::isfinite(s.restitution_threshold),
+          "restitution_threshold must be finite and ≥ 0");
+}
+
+}  // namespace
+
+World::World(WorldSettings settings)
+    : settings_(settings), broad_(settings.broad_phase, settings.grid_cell_size) {
+  check_settings(settings_);
+}
+
+std::uint32_t World::add(RigidBody body) {
+  if (!body.shape) throw std::invalid_argument("a body needs a shape");
+  bodies_.push_back(std::move(body));
+  return static_cast<std::uint32_t>(bodies_.size() - 1);
+}
+
+void World::bounding_boxes(double margin, std::vector<Aabb>& out) const {
+  out.resize(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const RigidBody& b = bodies_[i];
+    const Polytope& p = b.shape->polytope;
+    const Vec3 centre = 0.5 * (p.box_lower() + p.box_upper());
+    const Vec3 half = 0.5 * (p.box_upper() - p.box_lower());
+    // The rotated box's extent along each world axis: |R| times the half extents.
+    const Vec3 world_half =
+        b.pose.rotation.cwiseAbs() * half + Vec3::Constant(margin + sweep_distance(i));
+    const Vec3 world_centre = b.pose.apply(centre);
+    out[i] = {world_centre - world_half, world_centre + world_half};
+  }
+}
+
+double World::sweep_distance(std::uint32_t i) const {
+  // How far any point of the body can move in one step at its current velocity (length
+  // units): the speculative reach that keeps fast bodies from passing into each other.
+  const RigidBody& b = bodies_[i];
+  const double reach =
+      (b.velocity.norm() + b.angular_velocity.norm() * b.shape->radius) * settings_.dt;
+  return std::isfinite(reach) ? reach : 0.0;
+}
+
+const Polytope& World::world_hull(std::uint32_t i) {
+  if (world_hull_step_[i] != step_count_ + 1 || !world_hulls_[i]) {
+    world_hulls_[i].emplace(bodies_[i].shape->polytope.transformed(bodies_[i].pose));
+    world_hull_step_[i] = step_count_ + 1;
+  }
+  return *world_hulls_[i];
+}
+
+void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepStats& stats,
+                    double& iterations, double& iterations_cold) {
+  const Polytope& pa = world_hull(ia);
+  const Polytope& pb = world_hull(ib);
+  const std::span<const SimplexVertex> warm =
+      settings_.warm_start ? std::span<const SimplexVertex>(cache.simplex)
+                           : std::span<const SimplexVertex>();
+  const DistanceResult r = run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
+  ++stats.narrow_queries;
+  iterations += r.iterations;
+  if (settings_.measure_cold)
+    iterations_cold += run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
+  if (r.termination != Termination::converged) ++stats.failed_queries;
+  const auto kept = r.simplex.vertices();
+  cache.simplex.assign(kept.begin(), kept.end());
+
+  // Contacts within the margin plus the distance the pair can close in this step; those
+  // beyond the margin are speculative (negative depth, see the solver's target).
+  const double margin = settings_.contact_margin + sweep_distance(ia) + sweep_distance(ib);
+  if (!r.intersect && !(r.distance < margin)) {
+    cache.points.clear();
+    return;
+  }
+  Vec3 normal;
+  ManifoldPoint single;
+  if (r.intersect) {
+    EpaPolytope ws;
+    const EpaResult e = epa_from_gjk(pa, pb, r, EpaOptions{}, ws);
+    ++stats.epa_queries;
+    if (e.termination != Termination::converged) ++stats.failed_queries;
+    normal = e.normal;
+    single = {0.5 * (e.witness_a + e.witness_b), e.depth};
+  } else {
+    const Vec3 ab = r.witness_b - r.witness_a;
+    const double n = ab.norm();
+    // A zero distance that GJK did not call contact: fall back to the centres' direction.
+    normal = n > 0 ? Vec3(ab / n) : Vec3(bodies_[ib].pose.translation - bodies_[ia].pose.translation);
+    single = {0.5 * (r.witness_a + r.witness_b), -r.distance};
+  }
+  if (!normal.allFinite() || !(normal.norm() > 0) || !single.point.allFinite() ||
+      !std::isfinite(single.depth)) {
+    cache.points.clear();  // a failed query gives no contact rather than a NaN impulse
+    return;
+  }
+  normal.normalize();
+  std::vector<ManifoldPoint> pts =
+      clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape, pb,
+                    bodies_[ib].pose.rotation, normal, margin);
+  if (pts.empty()) pts.push_back(single);
+  const std::size_t first = contacts_.size();
+  for (const ManifoldPoint& m : pts) {
+    Contact c;
+    c.a = ia;
+    c.b = ib;
+    c.point = m.point;
+    c.normal = normal;
+    c.depth = m.depth;
+    contacts_.push_back(c);
+  }
+  warm_start_impulses(first, pts.size(), cache);
+  pair_ranges_.push_back({pair_key(ia, ib), {first, pts.size()}});
+}
+
+void World::warm_start_impulses(std::size_t first, std::size_t count, const PairCache& cache) {
+  // A new point inherits the impulses of the old point nearest to it in a's body frame, when
+  // that is within 5 % of a's size: the same contact feature, moved a little.
+  const RigidBody& a = bodies_[contacts_[first].a];
+  const double tolerance = 0.05 * a.shape->size;
+  for (std::size_t k = first; k < first + count; ++k) {
+    Contact& c = contacts_[k];
+    const Vec3 local = a.pose.rotation.transpose() * (c.point - a.pose.translation);
+    const CachedPoint* match = nullptr;
+    double best = tolerance * tolerance;
+    for (const CachedPoint& p : cache.points) {
+      const double d = (p.local_a - local).squaredNorm();
+      if (d <= best) best = d, match = &p;
+    }
+    if (match) {
+      c.normal_impulse = match->normal_impulse;
+      c.tangent_impulse[0] = match->tangent_impulse[0];
+      c.tangent_impulse[1] = match->tangent_impulse[1];
+    }
+  }
+}
+
+void World::store_impulses(PairCache& cache, std::size_t first, std::size_t count) const {
+  cache.points.clear();
+  for (std::size_t k = first; k < first + count; ++k) {
+    const Contact& c = contacts_[k];
+    const RigidBody& a = bodies_[c.a];
+    cache.points.push_back({a.pose.rotation.transpose() * (c.point - a.pose.translation),
+                            c.normal_impulse,
+                            {c.tangent_impulse[0], c.tangent_impulse[1]}});
+  }
+}
+
+void World::narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats) {
+  contacts_.clear();
+  pair_ranges_.clear();
+  double iterations = 0, iterations_cold = 0;
+  for (const auto& [i, j] : pairs) {
+    PairCache& cache = cache_[pair_key(i, j)];
+    cache.step = step_count_ + 1;
+    collide(i, j, cache, stats, iterations, iterations_cold);
+  }
+  // Pairs that left the broad phase lose their simplex and impulses.
+  std::erase_if(cache_, [&](const auto& kv) { return kv.second.step != step_count_ + 1; });
+  if (stats.narrow_queries > 0) {
+    stats.iterations_mean = iterations / static_cast<double>(stats.narrow_queries);
+    stats.iterations_cold_mean = iterations_cold / static_cast<double>(stats.narrow_queries);
+  }
+}
+
+namespace {
+
+/// Per-contact constants of one step's solve.
+struct ContactRow {
+  Vec3 ra, rb;     ///< arms from the centres of mass (world)
+  Vec3 t[2];       ///< tangents
+  double normal_mass;
+  double tangent_mass[2];
+  double target;   ///< normal relative velocity the impulse aims for (≥ this)
+  double friction;
+};
+
+void apply_impulse(RigidBody& a, RigidBody& b, const Mat3& ia, const Mat3& ib, const Vec3& ra,
+                   const Vec3& rb, const Vec3& p, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
+  va -= a.inverse_mass * p;
+  wa -= ia * ra.cross(p);
+  vb += b.inverse_mass * p;
+  wb += ib * rb.cross(p);
+}
+
+}  // namespace
+
+void World::solve_velocities() {
+  const std::size_t n = contacts_.size();
+  std::vector<ContactRow> rows(n);
+  std::vector<Mat3> inv_inertia(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) inv_inertia[i] = bodies_[i].inverse_inertia_world();
+  const double dt = settings_.dt;
+  for (std::size_t k = 0; k < n; ++k) {
+    Contact& c = contacts_[k];
+    RigidBody& a = bodies_[c.a];
+    RigidBody& b = bodies_[c.b];
+    ContactRow& row = rows[k];
+    row.ra = c.point - a.pose.translation;
+    row.rb = c.point - b.pose.translation;
+    tangent_basis(c.normal, row.t[0], row.t[1]);
+    const Mat3& ia = inv_inertia[c.a];
+    const Mat3& ib = inv_inertia[c.b];
+    row.normal_mass = 1.0 / inverse_effective_mass(a, b, ia, ib, row.ra, row.rb, c.normal);
+    for (int t = 0; t < 2; ++t)
+      row.tangent_mass[t] = 1.0 / inverse_effective_mass(a, b, ia, ib, row.ra, row.rb, row.t[t]);
+    row.friction = std::sqrt(a.friction * b.friction);
+    const double vn = (b.point_velocity(c.point) - a.point_velocity(c.point)).dot(c.normal);
+    const double e = std::max(a.restitution, b.restitution);
+    // Bounce when approaching fast enough to close the gap this step; otherwise a speculative
+    // contact lets the bodies approach by the gap (−depth) and no further.
+    if (e > 0 && vn < -settings_.restitution_threshold && c.depth > vn * dt)
+      row.target = -e * vn;
+    else
+      row.target = c.depth < 0 ? c.depth / dt : 0.0;
+    // Warm start: last step's impulses, applied once before the passes.
+    const Vec3 p = c.normal_impulse * c.normal + c.tangent_impulse[0] * row.t[0] +
+                   c.tangent_impulse[1] * row.t[1];
+    apply_impulse(a, b, ia, ib, row.ra, row.rb, p, a.velocity, a.angular_velocity, b.velocity,
+                  b.angular_velocity);
+  }
+  // Each pass: every non-penetration row, then every friction row (friction bounded by the
+  // normal impulse just computed; Coulomb's cone approximated by a box in the tangent basis).
+  for (int pass = 0; pass < settings_.solver_iterations; ++pass) {
+    for (int phase = 0; phase < 2; ++phase) {
+      for (std::size_t k = 0; k < n; ++k) {
+        Contact& c = contacts_[k];
+        RigidBody& a = bodies_[c.a];
+        RigidBody& b = bodies_[c.b];
+        const ContactRow& row = rows[k];
+        const Mat3& ia = inv_inertia[c.a];
+        const Mat3& ib = inv_inertia[c.b];
+        auto relative = [&] {
+          return Vec3(b.velocity + b.angular_velocity.cross(row.rb) - a.velocity -
+                      a.angular_velocity.cross(row.ra));
+        };
+        if (phase == 0) {
+          const double vn = relative().dot(c.normal);
+          const double old = c.normal_impulse;
+          c.normal_impulse = std::max(0.0, old + (row.target - vn) * row.normal_mass);
+          apply_impulse(a, b, ia, ib, row.ra, row.rb, (c.normal_impulse - old) * c.normal,
+                        a.velocity, a.angular_velocity, b.velocity, b.angular_velocity);
+          continue;
+        }
+        const double limit = row.friction * c.normal_impulse;
+        for (int t = 0; t < 2; ++t) {
+          const double vt = relative().dot(row.t[t]);
+          const double old = c.tangent_impulse[t];
+          c.tangent_impulse[t] = std::clamp(old - vt * row.tangent_mass[t], -limit, limit);
+          apply_impulse(a, b, ia, ib, row.ra, row.rb, (c.tangent_impulse[t] - old) * row.t[t],
+                        a.velocity, a.angular_velocity, b.velocity, b.angular_velocity);
+        }
+      }
+    }
+  }
+}
+
+void World::correct_positions(std::vector<Vec3>& dv, std::vector<Vec3>& dw) {
+  dv.assign(bodies_.size(), Vec3::Zero());
+  dw.assign(bodies_.size(), Vec3::Zero());
+  const std::size_t n = contacts_.size();
+  std::vector<double> lambda(n, 0.0);
+  std::vector<Mat3> inv_inertia(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) inv_inertia[i] = bodies_[i].inverse_inertia_world();
+  for (int pass = 0; pass < settings_.position_iterations; ++pass) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const Contact& c = contacts_[k];
+      if (c.depth <= settings_.slop) continue;
+      RigidBody& a = bodies_[c.a];
+      RigidBody& b = bodies_[c.b];
+      const Vec3 ra = c.point - a.pose.translation, rb = c.point - b.pose.translation;
+      const Mat3& ia = inv_inertia[c.a];
+      const Mat3& ib = inv_inertia[c.b];
+      // Pseudo-velocity (length/s) that removes the fraction `baumgarte` of the excess depth.
+      const double target = settings_.baumgarte * (c.depth - settings_.slop) / settings_.dt;
+      const double vn =
+          (dv[c.b] + dw[c.b].cross(rb) - dv[c.a] - dw[c.a].cross(ra)).dot(c.normal);
+      const double mass = 1.0 / inverse_effective_mass(a, b, ia, ib, ra, rb, c.normal);
+      const double old = lambda[k];
+      lambda[k] = std::max(0.0, old + (target - vn) * mass);
+      apply_impulse(a, b, ia, ib, ra, rb, (lambda[k] - old) * c.normal, dv[c.a], dw[c.a],
+                    dv[c.b], dw[c.b]);
+    }
+  }
+}
+
+void World::integrate(const std::vector<Vec3>& dv, const std::vector<Vec3>& dw) {
+  const double dt = settings_.dt;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    RigidBody& b = bodies_[i];
+    if (b.is_static()) continue;
+    b.pose.translation += (b.velocity + dv[i]) * dt;
+    const Vec3 w = b.angular_velocity + dw[i];
+    const Mat3 inertia_before =
+        b.pose.rotation * b.inverse_inertia_body.inverse() * b.pose.rotation.transpose();
+    const Quat spin(0, w.x(), w.y(), w.z());
+    b.orientation.coeffs() += 0.5 * dt * (spin * b.orientation).coeffs();
+    b.orientation.normalize();
+    b.pose.rotation = b.orientation.toRotationMatrix();
+    // Without torque the angular momentum I ω is constant in the world frame: the new
+    // orientation's inertia gets the ω that keeps it (the gyroscopic motion, to first order).
+    b.angular_velocity = b.inverse_inertia_world() * (inertia_before * b.angular_velocity);
+  }
+}
+
+StepStats World::step() {
+  StepStats stats;
+  world_hulls_.resize(bodies_.size());
+  world_hull_step_.resize(bodies_.size(), 0);
+  auto t0 = Clock::now();
+  bounding_boxes(settings_.contact_margin, boxes_);
+  broad_.find_pairs(boxes_, pairs_);
+  std::erase_if(pairs_, [&](const BodyPair& p) {
+    return bodies_[p.first].is_static() && bodies_[p.second].is_static();
+  });
+  stats.candidate_pairs = pairs_.size();
+  stats.broadphase_ns = nanoseconds_since(t0);
+
+  t0 = Clock::now();
+  narrow_phase(pairs_, stats);
+  stats.contacts = contacts_.size();
+  stats.narrowphase_ns = nanoseconds_since(t0);
+
+  t0 = Clock::now();
+  for (RigidBody& b : bodies_)
+    if (!b.is_static()) b.velocity += settings_.gravity * settings_.dt;
+  solve_velocities();
+  for (const auto& [key, range] : pair_ranges_)
+    store_impulses(cache_.at(key), range.first, range.second);
+  std::vector<Vec3> dv, dw;
+  correct_positions(dv, dw);
+  integrate(dv, dw);
+  stats.solver_ns = nanoseconds_since(t0);
+
+  for (RigidBody& b : bodies_) b.touching = false;
+  for (const Contact& c : contacts_)
+    if (c.depth >= 0) bodies_[c.a].touching = bodies_[c.b].touching = true;
+  time_ += settings_.dt;
+  ++step_count_;
+  return stats;
+}
+
+double World::max_penetration() const {
+  double m = 0;
+  for (const Contact& c : contacts_) m = std::max(m, c.depth);
+  return m;
+}
+
+double World::kinetic_energy() const {
+  double e = 0;
+  for (const RigidBody& b : bodies_) {
+    if (b.is_static()) continue;
+    const Mat3 inertia =
+        b.pose.rotation * b.inverse_inertia_body.inverse() * b.pose.rotation.transpose();
+    e += 0.5 * b.mass * b.velocity.squaredNorm() +
+         0.5 * b.angular_velocity.dot(inertia * b.angular_velocity);
+  }
+  return e;
+}
+
+double World::potential_energy() const {
+  double e = 0;
+  for (const RigidBody& b : bodies_)
+    if (!b.is_static()) e -= b.mass * settings_.gravity.dot(b.pose.translation);
+  return e;
+}
+
+Vec3 World::linear_momentum() const {
+  Vec3 p = Vec3::Zero();
+  for (const RigidBody& b : bodies_)
+    if (!b.is_static()) p += b.mass * b.velocity;
+  return p;
+}
+
+Vec3 World::angular_momentum() const {
+  Vec3 l = Vec3::Zero();
+  for (const RigidBody& b : bodies_) {
+    if (b.is_static()) continue;
+    const Mat3 inertia =
+        b.pose.rotation * b.inverse_inertia_body.inverse() * b.pose.rotation.transpose();
+    l += b.pose.translation.cross(b.mass * b.velocity) + inertia * b.angular_velocity;
+  }
+  return l;
+}
+
+bool World::finite() const {
+  for (const RigidBody& b : bodies_)
+    if (!b.pose.translation.allFinite() || !b.pose.rotation.allFinite() ||
+        !b.velocity.allFinite() || !b.angular_velocity.allFinite())
+      return false;
+  return true;
+}
+
+}  // namespace gjklab::scene

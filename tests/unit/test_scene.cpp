@@ -1,0 +1,117 @@
+// Scene layer: mass properties from the hull's tetrahedra, and the broad phases against the
+// all-pairs reference on random scenes.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "gjklab/geometry/shapes.hpp"
+#include "gjklab/scene/body.hpp"
+#include "gjklab/scene/broadphase.hpp"
+
+using namespace gjklab;
+using namespace gjklab::scene;
+
+namespace {
+
+std::vector<Vec3> cloud_of(const Polytope& p) {
+  return {p.vertices().begin(), p.vertices().end()};
+}
+
+}  // namespace
+
+TEST_CASE("scene: a box's mass properties are the textbook ones", "[unit][scene]") {
+  const Vec3 e(2, 1, 0.5);
+  std::vector<Vec3> cloud = cloud_of(shapes::box(e));
+  for (Vec3& v : cloud) v += Vec3(3, -1, 7);  // off-centre: the centroid must be found
+  const auto shape = make_convex_shape(cloud);
+  CHECK(shape->volume == Approx(1.0));
+  CHECK((-shape->input_origin - Vec3(3, -1, 7)).norm() < 1e-12);
+  // I = V/12 · diag(b² + c², a² + c², a² + b²) for unit density.
+  CHECK(shape->unit_inertia(0, 0) == Approx((1 + 0.25) / 12));
+  CHECK(shape->unit_inertia(1, 1) == Approx((4 + 0.25) / 12));
+  CHECK(shape->unit_inertia(2, 2) == Approx((4 + 1) / 12.0));
+  CHECK(std::abs(shape->unit_inertia(0, 1)) < 1e-12);
+  CHECK(shape->faces.size() == 6);
+  CHECK(shape->polytope.vertex_mean().norm() < 1e-12);
+}
+
+TEST_CASE("scene: a cylinder's and a tetrahedron's mass properties", "[unit][scene]") {
+  // A 64-gon prism of radius 0.5, height 1: volume n/2 r² sin(2π/n) h, Izz = V r_eff²/2 with
+  // the polygon's polar moment; compare with the circle's within the polygon's 0.2 % deficit.
+  const auto cyl = make_convex_shape(cloud_of(shapes::cylinder(64)));
+  const double n = 32, r = 0.5;
+  const double volume = n / 2 * r * r * std::sin(2 * M_PI / n);
+  CHECK(cyl->volume == Approx(volume).epsilon(1e-12));
+  CHECK(cyl->unit_inertia(2, 2) == Approx(M_PI * r * r * r * r / 2).epsilon(0.02));
+  CHECK(cyl->unit_inertia(0, 0) == Approx(cyl->unit_inertia(1, 1)).epsilon(1e-9));
+  // The unit right tetrahedron: V = 1/6, centroid (1/4, 1/4, 1/4), Ixx about the centroid 1/80.
+  const auto tet = make_convex_shape({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)});
+  CHECK(tet->volume == Approx(1.0 / 6));
+  CHECK((tet->input_origin + Vec3(0.25, 0.25, 0.25)).norm() < 1e-12);
+  CHECK(tet->unit_inertia(0, 0) == Approx(1.0 / 80));
+  CHECK(tet->unit_inertia(0, 1) == Approx(1.0 / 480));  // products of inertia enter with −
+}
+
+TEST_CASE("scene: flat and invalid clouds are refused", "[unit][scene]") {
+  CHECK_THROWS_AS(make_convex_shape({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}),
+                  InvalidGeometry);
+  CHECK_THROWS_AS(make_convex_shape({}), InvalidGeometry);
+  CHECK_THROWS_AS(make_convex_shape({Vec3(0, 0, NAN), Vec3(1, 0, 0)}), InvalidGeometry);
+  const auto shape = make_convex_shape(cloud_of(shapes::box()));
+  CHECK_THROWS_AS(make_dynamic_body(shape, 0.0, Quat::Identity(), Vec3::Zero()),
+                  std::invalid_argument);
+}
+
+TEST_CASE("scene: grid and sweep-and-prune give exactly the all-pairs overlap set",
+          "[unit][scene]") {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 1 + trial * 7;
+    const double region = 2 + u(rng) * 20;
+    std::vector<Aabb> boxes(n);
+    for (Aabb& b : boxes) {
+      const Vec3 c(u(rng) * region, u(rng) * region - region / 2, u(rng) * region);
+      Vec3 half(0.05 + u(rng), 0.05 + u(rng), 0.05 + u(rng));
+      if (u(rng) < 0.03) half *= 40;  // a few large boxes (grounds, containers)
+      if (u(rng) < 0.05) half.setZero();  // and points: touching counts
+      b = {c - half, c + half};
+    }
+    if (n > 3) boxes[1] = boxes[0];  // identical boxes overlap
+    if (n > 3) {                     // boxes that only touch along a face
+      boxes[3] = boxes[2];
+      boxes[3].lower.x() = boxes[2].upper.x();
+      boxes[3].upper.x() = boxes[2].upper.x() + 1;
+    }
+    std::vector<BodyPair> reference, grid, sap, grid_fixed;
+    all_pairs(boxes, reference);
+    BroadPhase g(BroadPhaseKind::grid), s(BroadPhaseKind::sweep_and_prune),
+        gf(BroadPhaseKind::grid, 0.3);
+    g.find_pairs(boxes, grid);
+    s.find_pairs(boxes, sap);
+    gf.find_pairs(boxes, grid_fixed);
+    CHECK(grid == reference);
+    CHECK(sap == reference);
+    CHECK(grid_fixed == reference);
+    // Move every box a little and ask again: sweep-and-prune reuses its order.
+    for (Aabb& b : boxes) {
+      const Vec3 d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+      b.lower += d;
+      b.upper += d;
+    }
+    all_pairs(boxes, reference);
+    s.find_pairs(boxes, sap);
+    g.find_pairs(boxes, grid);
+    CHECK(sap == reference);
+    CHECK(grid == reference);
+    if (n > 3) CHECK_FALSE(reference.empty());
+  }
+}
+
+TEST_CASE("scene: broad phase names round-trip", "[unit][scene]") {
+  for (auto k : {BroadPhaseKind::all_pairs, BroadPhaseKind::grid, BroadPhaseKind::sweep_and_prune})
+    CHECK(broad_phase_from_string(to_string(k)) == k);
+  CHECK_FALSE(broad_phase_from_string("octree"));
+}
