@@ -463,3 +463,40 @@ TEST_CASE("read_archive names a missing dataset", "[smoke][archive]") {
   CHECK_THROWS_WITH(read_archive(file),
                     Catch::Contains(file.string()) && Catch::Contains("/exact/depth"));
 }
+
+TEST_CASE("an archive older than the optional columns reads their defaults", "[smoke][archive]") {
+  require_h5py();
+  const TempDir dir;
+  const fs::path file = dir / "run.h5";
+  auto results = make_results(6, true);
+  for (CaseResult& r : results)
+    for (AlgorithmRecord& a : r.algorithms) {
+      a.rounded_exact_distance = 0.5;
+      a.rounded_exact_depth = 0.25;
+    }
+  write_archive(file, make_header(true), results, {6});
+  // The columns added after the first archives of schema version 2 (radius_* with swept
+  // shapes, rounded_exact_* with the precision option), removed as an older writer lacked them.
+  const std::string remove_optional =
+      " -c 'import h5py, sys; f = h5py.File(sys.argv[1], \"r+\"); "
+      "[f[\"cases\"].pop(k) for k in (\"radius_a\", \"radius_b\")]; "
+      "[f[\"algorithms/\" + a].pop(k) for a in (\"gjk-johnson\", \"gjk-bool\") "
+      "for k in (\"rounded_exact_distance\", \"rounded_exact_depth\")]' ";
+  REQUIRE(run(shell_word(python()) + remove_optional + shell_word(file.string())) == 0);
+  const Archive a = read_archive(file);
+  REQUIRE(a.results.size() == 6);
+  for (const CaseResult& r : a.results) {
+    CHECK(r.record.radius_a == 0.0);
+    CHECK(r.record.radius_b == 0.0);
+    for (const AlgorithmRecord& ar : r.algorithms) {
+      CHECK(std::isnan(ar.rounded_exact_distance));
+      CHECK(std::isnan(ar.rounded_exact_depth));
+    }
+  }
+  // A required column is never defaulted: the same removal of one fails, naming it.
+  const std::string remove_required =
+      " -c 'import h5py, sys; f = h5py.File(sys.argv[1], \"r+\"); "
+      "del f[\"algorithms/gjk-bool/witness_error_a\"]' ";
+  REQUIRE(run(shell_word(python()) + remove_required + shell_word(file.string())) == 0);
+  CHECK_THROWS_WITH(read_archive(file), Catch::Contains("/algorithms/gjk-bool/witness_error_a"));
+}

@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -101,6 +102,16 @@ struct Archive {
   bool complete = false;            ///< false when the flag is 0 or absent
   std::vector<CaseResult> results;  ///< geometry filled for the cases that kept it
 };
+
+/// One dataset of an archive group, as results/README.md documents it.
+struct ArchiveColumn {
+  std::string name;
+  std::string type;  ///< "float64", "enum `Termination`", "float64 (rows × 3)", ...
+};
+/// The datasets of the group "cases", "exact", "algorithms" (each algorithm's group),
+/// "geometry" or "traces" (each algorithm's group) in creation order; empty for another name.
+/// Read from the schema tables the writer and the reader use.
+std::vector<ArchiveColumn> archive_columns(std::string_view group);
 
 /// Reads an archive written by ArchiveWriter, complete or not (a "<output>.tmp" file too).
 /// Throws ArchiveError naming the file and the missing or malformed group, dataset or
