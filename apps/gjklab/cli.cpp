@@ -5,9 +5,11 @@
 
 #include "gjklab/bench.hpp"
 #include "gjklab/experiment/provenance.hpp"
+#include "gjklab/hunt.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"
 #include "gjklab/run.hpp"
+#include "gjklab/simulate.hpp"
 
 namespace gjklab::cli {
 
@@ -25,6 +27,10 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   auto* replay = add_replay_command(app, replay_args);
   BenchArgs bench_args;
   auto* bench = add_bench_command(app, bench_args);
+  HuntArgs hunt_args;
+  auto* hunt = add_hunt_command(app, hunt_args);
+  SimulateArgs simulate_args;
+  auto* simulate = add_simulate_command(app, simulate_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -40,6 +46,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   if (inspect->parsed()) return run_inspect_command(inspect_args, out, err);
   if (replay->parsed()) return run_replay_command(replay_args, out, err);
   if (bench->parsed()) return run_bench_command(bench_args, out, err);
+  if (hunt->parsed()) return run_hunt_command(hunt_args, out, err);
+  if (simulate->parsed()) return run_simulate_command(simulate_args, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance())
       out << name << ": " << value << "\n";

@@ -31,26 +31,41 @@ BodyPair ordered(std::uint32_t a, std::uint32_t b) {
 void SweepAndPrune::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
   out.clear();
   const auto n = static_cast<std::uint32_t>(boxes.size());
-  if (order_.size() != n) {
+  // Sweep along the axis on which the centres spread most: fewest boxes share an interval.
+  Vec3 sum = Vec3::Zero(), sum2 = Vec3::Zero();
+  for (const Aabb& b : boxes) {
+    const Vec3 c = 0.5 * (b.lower + b.upper);
+    if (!c.allFinite()) continue;
+    sum += c;
+    sum2 += c.cwiseProduct(c);
+  }
+  int axis = 0;
+  (sum2 - sum.cwiseProduct(sum) / std::max<double>(n, 1)).maxCoeff(&axis);
+  if (order_.size() != n || axis != axis_) {
     order_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) order_[i] = i;
+    axis_ = axis;
   }
-  // Insertion sort on lower x from last frame's order (nearly sorted: about n steps).
+  // Insertion sort on the lower bound from last frame's order (nearly sorted: about n steps).
   for (std::uint32_t k = 1; k < n; ++k) {
     const std::uint32_t body = order_[k];
-    const double key = boxes[body].lower.x();
+    const double key = boxes[body].lower[axis];
     std::uint32_t m = k;
-    while (m > 0 && boxes[order_[m - 1]].lower.x() > key) {
+    while (m > 0 && boxes[order_[m - 1]].lower[axis] > key) {
       order_[m] = order_[m - 1];
       --m;
     }
     order_[m] = body;
   }
+  // The sweep reads the boxes in sorted order from a contiguous copy (no gather per test).
+  sorted_.resize(n);
+  for (std::uint32_t k = 0; k < n; ++k) sorted_[k] = boxes[order_[k]];
   for (std::uint32_t k = 0; k < n; ++k) {
-    const Aabb& a = boxes[order_[k]];
+    const Aabb& a = sorted_[k];
+    const double end = a.upper[axis];
     for (std::uint32_t m = k + 1; m < n; ++m) {
-      const Aabb& b = boxes[order_[m]];
-      if (b.lower.x() > a.upper.x()) break;  // every later box starts further right
+      const Aabb& b = sorted_[m];
+      if (b.lower[axis] > end) break;  // every later box starts further along
       if (a.overlaps(b)) out.push_back(ordered(order_[k], order_[m]));
     }
   }
@@ -98,25 +113,106 @@ double auto_cell_size(std::span<const Aabb> boxes) {
   for (const Aabb& b : boxes) sides.push_back((b.upper - b.lower).maxCoeff());
   std::nth_element(sides.begin(), sides.begin() + sides.size() / 2, sides.end());
   const double median = sides[sides.size() / 2];
-  return median > 0 && std::isfinite(median) ? 2 * median : 1.0;
+  // About the median box's side: most boxes then touch 1 to 8 cells and a cell holds few
+  // boxes (measured on the demo scene: 1.1 × the median side is near the fastest).
+  return median > 0 && std::isfinite(median) ? 1.1 * median : 1.0;
 }
 
 }  // namespace
 
 void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
   out.clear();
-  entries_.clear();
   large_.clear();
   if (boxes.empty()) return;
   used_cell_size_ = cell_size_ > 0 ? cell_size_ : auto_cell_size(boxes);
   const double inv = 1.0 / used_cell_size_;
   const auto n = static_cast<std::uint32_t>(boxes.size());
+  ranges_.resize(n);
+  small_.clear();
+  std::int64_t lo[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, hi[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
   for (std::uint32_t i = 0; i < n; ++i) {
     const CellRange r = cell_range(boxes[i], inv);
     if (!(r.count() <= double(kMaxCellsPerBox))) {
       large_.push_back(i);
       continue;
     }
+    if (r.count() <= 0) continue;  // a NaN box: overlaps nothing
+    ranges_[i] = {r.lo[0], r.lo[1], r.lo[2], r.hi[0], r.hi[1], r.hi[2]};
+    small_.push_back(i);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], r.lo[a]);
+      hi[a] = std::max(hi[a], r.hi[a]);
+    }
+  }
+  if (!small_.empty()) {
+    const double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) *
+                         double(hi[2] - lo[2] + 1);
+    // A dense array of cells when the occupied region is not much larger than the bodies
+    // need (the usual case); hashed cells, sorted, for scattered worlds.
+    if (cells <= 8.0 * double(small_.size()) + 4096)
+      dense_pairs(boxes, lo, hi, out);
+    else
+      hashed_pairs(boxes, out);
+  }
+  for (std::uint32_t big : large_)
+    for (std::uint32_t j = 0; j < n; ++j)
+      if (j != big && boxes[big].overlaps(boxes[j])) {
+        // Two large boxes meet twice: report from the smaller index only.
+        const bool other_large = std::binary_search(large_.begin(), large_.end(), j);
+        if (other_large && j < big) continue;
+        out.push_back(ordered(big, j));
+      }
+  std::sort(out.begin(), out.end());
+}
+
+bool UniformGrid::owns(const Range& a, const Range& b, std::int64_t x, std::int64_t y,
+                       std::int64_t z) {
+  // The one cell that reports a pair: the lower corner of the two ranges' intersection.
+  return x == std::max(a.lo[0], b.lo[0]) && y == std::max(a.lo[1], b.lo[1]) &&
+         z == std::max(a.lo[2], b.lo[2]);
+}
+
+void UniformGrid::dense_pairs(std::span<const Aabb> boxes, const std::int64_t lo[3],
+                              const std::int64_t hi[3], std::vector<BodyPair>& out) {
+  const std::int64_t nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1, nz = hi[2] - lo[2] + 1;
+  auto cell_index = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<std::size_t>(((z - lo[2]) * ny + (y - lo[1])) * nx + (x - lo[0]));
+  };
+  // Counting sort of (cell, body): counts, prefix sums, then the bodies in index order.
+  start_.assign(static_cast<std::size_t>(nx * ny * nz) + 1, 0);
+  auto for_cells = [&](const Range& r, auto&& f) {
+    for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z)
+      for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
+        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x) f(x, y, z);
+  };
+  for (std::uint32_t i : small_)
+    for_cells(ranges_[i], [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      ++start_[cell_index(x, y, z) + 1];
+    });
+  for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+  members_.resize(start_.back());
+  fill_ = start_;
+  for (std::uint32_t i : small_)
+    for_cells(ranges_[i], [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      members_[fill_[cell_index(x, y, z)]++] = i;
+    });
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+        const std::size_t c = cell_index(x, y, z);
+        for (std::uint32_t p = start_[c]; p < start_[c + 1]; ++p)
+          for (std::uint32_t q = p + 1; q < start_[c + 1]; ++q) {
+            const std::uint32_t i = members_[p], j = members_[q];
+            if (owns(ranges_[i], ranges_[j], x, y, z) && boxes[i].overlaps(boxes[j]))
+              out.push_back(ordered(i, j));
+          }
+      }
+}
+
+void UniformGrid::hashed_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
+  entries_.clear();
+  for (std::uint32_t i : small_) {
+    const Range& r = ranges_[i];
     for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
       for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
         for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z)
@@ -131,11 +227,9 @@ void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>&
     for (std::size_t p = s; p < e; ++p) {
       for (std::size_t q = p + 1; q < e; ++q) {
         const std::uint32_t i = entries_[p].body, j = entries_[q].body;
-        const Aabb& a = boxes[i];
-        const Aabb& b = boxes[j];
-        if (!a.overlaps(b)) continue;
-        // Report only from the cell holding the lower corner of the shared cell range.
-        const CellRange ra = cell_range(a, inv), rb = cell_range(b, inv);
+        if (!boxes[i].overlaps(boxes[j])) continue;
+        const Range& ra = ranges_[i];
+        const Range& rb = ranges_[j];
         const std::uint64_t owner =
             cell_key(std::max(ra.lo[0], rb.lo[0]), std::max(ra.lo[1], rb.lo[1]),
                      std::max(ra.lo[2], rb.lo[2]));
@@ -144,15 +238,6 @@ void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>&
     }
     s = e;
   }
-  for (std::uint32_t big : large_)
-    for (std::uint32_t j = 0; j < n; ++j)
-      if (j != big && boxes[big].overlaps(boxes[j])) {
-        // Two large boxes meet twice: report from the smaller index only.
-        const bool other_large = std::binary_search(large_.begin(), large_.end(), j);
-        if (other_large && j < big) continue;
-        out.push_back(ordered(big, j));
-      }
-  std::sort(out.begin(), out.end());
 }
 
 void BroadPhase::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {

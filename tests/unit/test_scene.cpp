@@ -70,7 +70,8 @@ TEST_CASE("scene: grid and sweep-and-prune give exactly the all-pairs overlap se
   std::uniform_real_distribution<double> u(0, 1);
   for (int trial = 0; trial < 40; ++trial) {
     const int n = 1 + trial * 7;
-    const double region = 2 + u(rng) * 20;
+    // Every fourth scene is scattered over 10⁵ m, where the grid hashes its cells.
+    const double region = trial % 4 == 3 ? 1e5 : 2 + u(rng) * 20;
     std::vector<Aabb> boxes(n);
     for (Aabb& b : boxes) {
       const Vec3 c(u(rng) * region, u(rng) * region - region / 2, u(rng) * region);
@@ -106,7 +107,7 @@ TEST_CASE("scene: grid and sweep-and-prune give exactly the all-pairs overlap se
     g.find_pairs(boxes, grid);
     CHECK(sap == reference);
     CHECK(grid == reference);
-    if (n > 3) CHECK_FALSE(reference.empty());
+    if (n > 3 && region < 100) CHECK_FALSE(reference.empty());
   }
 }
 

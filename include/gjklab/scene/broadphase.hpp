@@ -49,30 +49,44 @@ std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name);
 /// The reference: every pair tested.
 void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
 
-/// Sweep and prune on x. Keeps the sorted order between calls: in a simulation the order
-/// changes little from frame to frame, and insertion sort then costs about n comparisons.
+/// Sweep and prune on the axis along which the box centres spread most. Keeps the sorted
+/// order between calls: in a simulation the order changes little from frame to frame, and
+/// insertion sort then costs about n comparisons.
 class SweepAndPrune {
  public:
   void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
 
  private:
   std::vector<std::uint32_t> order_;
+  std::vector<Aabb> sorted_;
+  int axis_ = 0;
 };
 
-/// Uniform grid of cubic cells of side `cell_size` (length units), hashed (the world is not
-/// bounded). A box goes into every cell it touches; a pair is reported by the one cell that
+/// Uniform grid of cubic cells of side `cell_size` (length units): a dense array over the
+/// occupied region (counting sort, linear time), or hashed cells when the bodies are scattered
+/// over a region much larger than they fill. A box goes into every cell it touches; a pair is reported by the one cell that
 /// holds the lower corner of the intersection of the two boxes' cell ranges, so each pair once
 /// without a set. Boxes that would touch more than kMaxCellsPerBox cells (a ground plane) are
 /// kept aside and tested against every box instead.
 class UniformGrid {
  public:
   static constexpr std::int64_t kMaxCellsPerBox = 64;
-  /// cell_size ≤ 0: chosen at each call as twice the median box's largest side.
+  /// cell_size ≤ 0: chosen at each call as 1.1 × the median box's largest side.
   explicit UniformGrid(double cell_size = 0) : cell_size_(cell_size) {}
   void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
   double last_cell_size() const { return used_cell_size_; }
 
  private:
+  /// A box's cells, inclusive on both ends.
+  struct Range {
+    std::int64_t lo[3], hi[3];
+  };
+  static bool owns(const Range& a, const Range& b, std::int64_t x, std::int64_t y,
+                   std::int64_t z);
+  void dense_pairs(std::span<const Aabb> boxes, const std::int64_t lo[3], const std::int64_t hi[3],
+                   std::vector<BodyPair>& out);
+  void hashed_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+
   double cell_size_;
   double used_cell_size_ = 0;
   struct Entry {
@@ -80,7 +94,9 @@ class UniformGrid {
     std::uint32_t body;
   };
   std::vector<Entry> entries_;
-  std::vector<std::uint32_t> large_;
+  std::vector<std::uint32_t> large_, small_;
+  std::vector<Range> ranges_;
+  std::vector<std::uint32_t> start_, fill_, members_;
 };
 
 /// One broad phase selected by kind, with the state its kind keeps between frames.

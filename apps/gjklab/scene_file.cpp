@@ -1,0 +1,442 @@
+#include "gjklab/scene_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/geometry/shapes.hpp"
+
+namespace gjklab::cli {
+
+namespace {
+
+using experiment::ConfigError;
+
+constexpr std::int64_t kMaxFrames = 100'000'000;
+constexpr std::int64_t kMaxBodies = 100'000;
+/// Tries per body of the random placement before the region is declared too full.
+constexpr int kPlacementAttempts = 1000;
+
+int line_of(const toml::source_region& r) {
+  return r.begin.line > 0 ? static_cast<int>(r.begin.line) : 1;
+}
+
+/// One table being read; every problem names the file, the value's line and the dotted key.
+class Table {
+ public:
+  Table(const std::string& file, const toml::table& t, std::string path)
+      : file_(file), t_(t), path_(std::move(path)) {}
+
+  std::string key(std::string_view k) const {
+    return path_.empty() ? std::string(k) : path_ + "." + std::string(k);
+  }
+  int line() const { return line_of(t_.source()); }
+  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
+    const toml::node* n = t_.get(k);
+    throw ConfigError(file_, n ? line_of(n->source()) : line(), key(k), problem);
+  }
+  void allow_only(std::initializer_list<std::string_view> allowed) const {
+    for (auto&& [k, v] : t_) {
+      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw ConfigError(file_, line_of(k.source()), key(k.str()), "unknown key; valid: " + list);
+    }
+  }
+  bool has(std::string_view k) const { return t_.get(k) != nullptr; }
+
+  double number(std::string_view k, double fallback, double lo, double hi) const {
+    const toml::node* n = t_.get(k);
+    if (!n) return fallback;
+    double v;
+    if (auto i = n->value_exact<std::int64_t>())
+      v = static_cast<double>(*i);
+    else if (auto d = n->value_exact<double>())
+      v = *d;
+    else
+      fail(k, "expected a number");
+    if (!std::isfinite(v) || v < lo || v > hi)
+      fail(k, "must be finite and in [" + fmt(lo) + ", " + fmt(hi) + "], not " + fmt(v));
+    return v;
+  }
+  std::int64_t integer(std::string_view k, std::int64_t fallback, std::int64_t lo,
+                       std::int64_t hi) const {
+    const toml::node* n = t_.get(k);
+    if (!n) return fallback;
+    const auto i = n->value_exact<std::int64_t>();
+    if (!i) fail(k, "expected an integer");
+    if (*i < lo || *i > hi)
+      fail(k, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], not " +
+                  std::to_string(*i));
+    return *i;
+  }
+  bool boolean(std::string_view k, bool fallback) const {
+    const toml::node* n = t_.get(k);
+    if (!n) return fallback;
+    const auto b = n->value_exact<bool>();
+    if (!b) fail(k, "expected true or false");
+    return *b;
+  }
+  std::string string(std::string_view k, const std::string& fallback) const {
+    const toml::node* n = t_.get(k);
+    if (!n) return fallback;
+    const auto s = n->value_exact<std::string>();
+    if (!s) fail(k, "expected a string");
+    return *s;
+  }
+  /// An array of `size` finite numbers.
+  std::vector<double> numbers(std::string_view k, std::size_t size) const {
+    const toml::array* a = t_.get(k) ? t_.get(k)->as_array() : nullptr;
+    if (!a) fail(k, "expected an array of " + std::to_string(size) + " numbers");
+    return numbers_of(*a, k, size);
+  }
+  std::vector<double> numbers_of(const toml::array& a, std::string_view k, std::size_t size) const {
+    if (a.size() != size) fail(k, "expected " + std::to_string(size) + " numbers");
+    std::vector<double> out;
+    for (const toml::node& n : a) {
+      if (auto i = n.value_exact<std::int64_t>())
+        out.push_back(static_cast<double>(*i));
+      else if (auto d = n.value_exact<double>())
+        out.push_back(*d);
+      else
+        fail(k, "expected numbers");
+      if (!std::isfinite(out.back())) fail(k, "every number must be finite");
+    }
+    return out;
+  }
+  Vec3 vec3(std::string_view k, const Vec3& fallback) const {
+    if (!has(k)) return fallback;
+    const auto v = numbers(k, 3);
+    return Vec3(v[0], v[1], v[2]);
+  }
+  /// A sub-table (absent: an empty one).
+  Table child(std::string_view k) const {
+    const toml::node* n = t_.get(k);
+    if (!n) return Table(file_, empty_, key(k));
+    if (!n->is_table()) fail(k, "expected a table");
+    return Table(file_, *n->as_table(), key(k));
+  }
+  /// The tables of an array of tables ([[k]]).
+  std::vector<Table> tables(std::string_view k) const {
+    std::vector<Table> out;
+    const toml::node* n = t_.get(k);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) fail(k, "expected an array of tables [[" + std::string(k) + "]]");
+    for (std::size_t i = 0; i < a->size(); ++i)
+      out.emplace_back(file_, *a->get(i)->as_table(),
+                       key(k) + "[" + std::to_string(i) + "]");
+    return out;
+  }
+  const toml::table& raw() const { return t_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+  static inline const toml::table empty_{};
+  const std::string& file_;
+  const toml::table& t_;
+  std::string path_;
+};
+
+Quat rotation_of(const Table& t) {
+  if (!t.has("rotation")) return Quat::Identity();
+  const auto q = t.numbers("rotation", 4);
+  const Quat r(q[0], q[1], q[2], q[3]);
+  if (!(r.norm() > 1e-12)) t.fail("rotation", "a quaternion (w, x, y, z) must not be zero");
+  return r.normalized();
+}
+
+/// Scale factors of a unit demo shape: one number (uniform) or three.
+Vec3 size_of(const Table& t) {
+  if (!t.has("size")) return Vec3::Ones();
+  Vec3 s;
+  if (t.raw().get("size")->is_array()) {
+    s = t.vec3("size", Vec3::Ones());
+  } else {
+    const double u = t.number("size", 1, 0, 1e12);
+    s = Vec3::Constant(u);
+  }
+  if (!(s.minCoeff() > 0)) t.fail("size", "every size must be positive");
+  return s;
+}
+
+std::vector<Vec3> scaled(const Polytope& p, const Vec3& s) {
+  std::vector<Vec3> out;
+  for (const Vec3& v : p.vertices()) out.push_back(v.cwiseProduct(s));
+  return out;
+}
+
+std::vector<Vec3> hull_points(const Table& t) {
+  const toml::node* n = t.raw().get("points");
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a || a->empty()) t.fail("points", "expected an array of [x, y, z] points");
+  std::vector<Vec3> out;
+  for (const toml::node& p : *a) {
+    const toml::array* xyz = p.as_array();
+    if (!xyz) t.fail("points", "expected an array of [x, y, z] points");
+    const auto v = t.numbers_of(*xyz, "points", 3);
+    out.emplace_back(v[0], v[1], v[2]);
+  }
+  return out;
+}
+
+/// The cloud of a body or static shape, or a ConfigError naming the shape key.
+std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
+  const Vec3 s = size_of(t);
+  if (shape == "box") return scaled(shapes::box(), s);
+  if (shape == "hull") return hull_points(t);
+  const auto v = static_cast<int>(t.integer("vertices", shape == "cone" ? shapes::kDefaultConeVertices
+                                                        : shape == "cylinder"
+                                                            ? shapes::kDefaultCylinderVertices
+                                                            : shapes::kDefaultSphereVertices,
+                                            4, 100000));
+  try {
+    if (shape == "cone") return scaled(shapes::cone(v), s);
+    if (shape == "cylinder") return scaled(shapes::cylinder(v), s);
+    if (shape == "sphere") return scaled(shapes::uv_sphere(v), s);
+  } catch (const std::invalid_argument& e) {
+    t.fail("vertices", e.what());
+  }
+  t.fail("shape", "unknown shape '" + shape + "'; valid: box, cone, cylinder, sphere, hull");
+}
+
+/// Shapes by their table text, so that a group's bodies share one hull.
+class ShapeCache {
+ public:
+  std::shared_ptr<const scene::ConvexShape> get(const Table& t, std::string_view key,
+                                                std::vector<Vec3> cloud) {
+    std::ostringstream k;
+    k.precision(17);
+    for (const Vec3& v : cloud) k << v.x() << ' ' << v.y() << ' ' << v.z() << ';';
+    auto& slot = cache_[k.str()];
+    if (!slot) {
+      try {
+        slot = scene::make_convex_shape(std::move(cloud));
+      } catch (const std::invalid_argument& e) {
+        t.fail(key, e.what());
+      }
+    }
+    return slot;
+  }
+
+ private:
+  std::map<std::string, std::shared_ptr<const scene::ConvexShape>> cache_;
+};
+
+void read_settings(const Table& root, scene::WorldSettings& s) {
+  const Table p = root.child("physics");
+  p.allow_only({"gravity", "dt", "solver_iterations", "position_iterations", "contact_margin",
+                "slop", "baumgarte", "restitution_threshold"});
+  s.gravity = p.vec3("gravity", s.gravity);
+  s.dt = p.number("dt", s.dt, 1e-9, 10);
+  s.solver_iterations = static_cast<int>(p.integer("solver_iterations", s.solver_iterations, 1, 1000));
+  s.position_iterations =
+      static_cast<int>(p.integer("position_iterations", s.position_iterations, 0, 1000));
+  s.contact_margin = p.number("contact_margin", s.contact_margin, 0, 1e12);
+  s.slop = p.number("slop", s.slop, 0, 1e12);
+  s.baumgarte = p.number("baumgarte", s.baumgarte, 0, 1);
+  s.restitution_threshold = p.number("restitution_threshold", s.restitution_threshold, 0, 1e12);
+
+  const Table b = root.child("broad_phase");
+  b.allow_only({"kind", "grid_cell_size"});
+  const std::string kind = b.string("kind", std::string(to_string(s.broad_phase)));
+  const auto k = scene::broad_phase_from_string(kind);
+  if (!k) b.fail("kind", "unknown broad phase '" + kind + "'; valid: all-pairs, grid, sap");
+  s.broad_phase = *k;
+  s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
+
+  const Table n = root.child("narrow_phase");
+  n.allow_only({"algorithm", "warm_start", "measure_cold", "max_iterations"});
+  const std::string name = n.string("algorithm", "gjk-johnson");
+  const auto a = scene::narrow_algorithm_from_string(name);
+  if (!a)
+    n.fail("algorithm", "'" + name +
+                            "' cannot run warm-started in a scene; valid: gjk-johnson, "
+                            "gjk-johnson-backup, gjk-sv, gjk-voronoi");
+  s.algorithm = *a;
+  s.warm_start = n.boolean("warm_start", true);
+  s.measure_cold = n.boolean("measure_cold", false);
+  s.gjk.max_iterations = static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
+}
+
+/// A funnel of `segments` static slabs: each a convex hull of 8 points between the cone of
+/// inner radius bottom_radius (z = 0) … top_radius (z = height) and the same cone moved out by
+/// `thickness` (length units), centred on `position`.
+std::vector<std::vector<Vec3>> funnel_panels(const Table& t) {
+  const double r0 = t.number("bottom_radius", 1, 0, 1e12);
+  const double r1 = t.number("top_radius", 3, 0, 1e12);
+  const double h = t.number("height", 3, 1e-9, 1e12);
+  const double th = t.number("thickness", 0.2, 1e-9, 1e12);
+  const int n = static_cast<int>(t.integer("segments", 16, 3, 1024));
+  std::vector<std::vector<Vec3>> out;
+  for (int k = 0; k < n; ++k) {
+    std::vector<Vec3> pts;
+    for (int e = 0; e < 2; ++e) {
+      const double a = 2 * M_PI * (k + e) / n;
+      const Vec3 dir(std::cos(a), std::sin(a), 0);
+      for (double r : {r0, r1})
+        for (double off : {0.0, th}) pts.push_back(dir * (r + off) + Vec3(0, 0, r == r0 ? 0 : h));
+    }
+    out.push_back(std::move(pts));
+  }
+  return out;
+}
+
+void add_statics(const Table& root, SceneSetup& s, ShapeCache& shapes) {
+  for (const Table& t : root.tables("static")) {
+    t.allow_only({"shape", "size", "points", "position", "rotation", "friction", "restitution",
+                  "bottom_radius", "top_radius", "height", "thickness", "segments"});
+    const std::string shape = t.string("shape", "");
+    if (shape.empty()) t.fail("shape", "missing (required): box, hull or funnel");
+    const Vec3 position = t.vec3("position", Vec3::Zero());
+    const Quat rotation = rotation_of(t);
+    std::vector<std::vector<Vec3>> clouds;
+    if (shape == "funnel")
+      clouds = funnel_panels(t);
+    else if (shape == "box" || shape == "hull")
+      clouds.push_back(cloud_of(t, shape));
+    else
+      t.fail("shape", "unknown static shape '" + shape + "'; valid: box, hull, funnel");
+    for (auto& cloud : clouds) {
+      auto cs = shapes.get(t, shape == "hull" ? "points" : "shape", std::move(cloud));
+      // The cloud's own origin goes to `position`: the centre of mass sits where the cloud
+      // put it relative to that origin.
+      scene::RigidBody b = scene::make_static_body(
+          cs, rotation, position - rotation.toRotationMatrix() * cs->input_origin);
+      b.friction = t.number("friction", 0.5, 0, 100);
+      b.restitution = t.number("restitution", 0, 0, 1);
+      s.world->add(b);
+      s.shape_names.push_back(shape);
+    }
+  }
+}
+
+Quat random_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0, 1);
+  return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
+}
+
+void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt19937_64& rng) {
+  struct Placed {
+    Vec3 centre;
+    double radius;
+  };
+  std::vector<Placed> placed;
+  std::vector<double> sizes;
+  for (const Table& t : root.tables("bodies")) {
+    t.allow_only({"shape", "size", "vertices", "points", "count", "density", "friction",
+                  "restitution", "placement", "position", "spacing", "row", "region",
+                  "random_rotation", "velocity"});
+    const std::string shape = t.string("shape", "");
+    if (shape.empty()) t.fail("shape", "missing (required): box, cone, cylinder, sphere or hull");
+    auto cs = shapes.get(t, shape == "hull" ? "points" : "shape", cloud_of(t, shape));
+    const auto count = t.integer("count", 1, 1, kMaxBodies);
+    const double density = t.number("density", 1000, 1e-12, 1e12);
+    const std::string placement = t.string("placement", "stack");
+    const Vec3 origin = t.vec3("position", Vec3::Zero());
+    const double spacing = t.number("spacing", cs->size, 1e-9, 1e12);
+    const auto row = t.integer("row", 10, 1, kMaxBodies);
+    const bool spin = t.boolean("random_rotation", false);
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+    if (placement == "random") {
+      const toml::node* r = t.raw().get("region");
+      const toml::array* a = r ? r->as_array() : nullptr;
+      if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array())
+        t.fail("region", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+      const auto l = t.numbers_of(*a->get(0)->as_array(), "region", 3);
+      const auto h = t.numbers_of(*a->get(1)->as_array(), "region", 3);
+      lo = Vec3(l[0], l[1], l[2]);
+      hi = Vec3(h[0], h[1], h[2]);
+      if (!(lo.array() <= hi.array()).all()) t.fail("region", "the lower corner must not exceed the upper");
+    } else if (placement != "stack" && placement != "grid") {
+      t.fail("placement", "unknown placement '" + placement + "'; valid: stack, grid, random");
+    }
+    std::uniform_real_distribution<double> u(0, 1);
+    for (std::int64_t i = 0; i < count; ++i) {
+      Vec3 centre;
+      if (placement == "stack") {
+        centre = origin + Vec3(0, 0, spacing * static_cast<double>(i));
+      } else if (placement == "grid") {
+        const std::int64_t layer = i / (row * row), in = i % (row * row);
+        centre = origin + spacing * Vec3(static_cast<double>(in % row),
+                                         static_cast<double>(in / row), static_cast<double>(layer));
+      } else {
+        int attempt = 0;
+        for (; attempt < kPlacementAttempts; ++attempt) {
+          centre = lo + (hi - lo).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+          const bool free = std::none_of(placed.begin(), placed.end(), [&](const Placed& p) {
+            return (p.centre - centre).norm() < p.radius + cs->radius;
+          });
+          if (free) break;
+        }
+        if (attempt == kPlacementAttempts)
+          t.fail("region", "cannot place body " + std::to_string(i + 1) + " of " +
+                               std::to_string(count) + " without overlap: the region is too small");
+      }
+      const Quat q = spin ? random_rotation(rng) : Quat::Identity();
+      scene::RigidBody b = scene::make_dynamic_body(cs, density, q, centre);
+      b.friction = t.number("friction", 0.5, 0, 100);
+      b.restitution = t.number("restitution", 0, 0, 1);
+      b.velocity = t.vec3("velocity", Vec3::Zero());
+      s.world->add(b);
+      s.shape_names.push_back(shape);
+      placed.push_back({centre, cs->radius});
+      sizes.push_back(cs->size);
+    }
+  }
+  if (sizes.empty()) throw ConfigError(root.file(), root.line(), "bodies",
+                      "a scene needs at least one [[bodies]] group");
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  s.body_size = sizes[sizes.size() / 2];
+}
+
+}  // namespace
+
+SceneSetup parse_scene(const std::string& text, const std::string& source) {
+  toml::table doc;
+  try {
+    doc = toml::parse(std::string_view(text), std::string_view(source));
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(source, line_of(e.source()), "", "TOML syntax error: " + std::string(e.description()));
+  }
+  const Table root(source, doc, "");
+  root.allow_only({"scene", "physics", "broad_phase", "narrow_phase", "static", "bodies"});
+  SceneSetup s;
+  s.text = text;
+  const Table sc = root.child("scene");
+  sc.allow_only({"name", "seed", "frames", "pose_every", "contacts_every", "compare_broad_phases"});
+  s.name = sc.string("name", "scene");
+  s.seed = static_cast<std::uint64_t>(sc.integer("seed", 1, 0, INT64_MAX));
+  s.frames = sc.integer("frames", 600, 1, kMaxFrames);
+  s.pose_every = sc.integer("pose_every", 10, 1, kMaxFrames);
+  s.contacts_every = sc.integer("contacts_every", 10, 1, kMaxFrames);
+  s.compare_broad_phases = sc.boolean("compare_broad_phases", false);
+  scene::WorldSettings settings;
+  read_settings(root, settings);
+  s.world = std::make_unique<scene::World>(settings);
+  ShapeCache shapes;
+  std::mt19937_64 rng(s.seed);
+  add_statics(root, s, shapes);
+  add_bodies(root, s, shapes, rng);
+  return s;
+}
+
+SceneSetup load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path, 0, "", "cannot read the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace gjklab::cli

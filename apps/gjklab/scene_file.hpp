@@ -1,0 +1,38 @@
+// Scene files (TOML) for `gjklab simulate`: the world's settings, static containers and body
+// groups with their placement. Errors are experiment::ConfigError "FILE:LINE: key 'K': ..."
+// like the experiment files'. The format is documented in README.md ("Scenes").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gjklab/scene/world.hpp"
+
+namespace gjklab::cli {
+
+/// A scene ready to simulate: the world with every body placed, and how to record it.
+struct SceneSetup {
+  std::string name;
+  std::uint64_t seed = 1;
+  std::int64_t frames = 0;
+  /// Body poses are archived every `pose_every` frames, contacts every `contacts_every`.
+  std::int64_t pose_every = 10;
+  std::int64_t contacts_every = 10;
+  /// Time all three broad phases on every frame's boxes (and check they agree).
+  bool compare_broad_phases = false;
+  std::unique_ptr<scene::World> world;
+  /// Per body: the name of its shape kind ("box", "cone", …, "funnel", "hull").
+  std::vector<std::string> shape_names;
+  /// The scene's length scale: the median dynamic body's size (hull diagonal).
+  double body_size = 1;
+  std::string text;  ///< the file as read, for the archive
+};
+
+/// Reads and builds a scene. Throws experiment::ConfigError (also for an unreadable file).
+SceneSetup load_scene(const std::string& path);
+/// The same from text; `source` names it in errors.
+SceneSetup parse_scene(const std::string& text, const std::string& source);
+
+}  // namespace gjklab::cli

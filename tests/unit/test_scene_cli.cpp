@@ -1,0 +1,113 @@
+// `gjklab simulate`: scene files with errors naming file, line and key; a small scene run to
+// its archive; an existing archive kept without --force.
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gjklab/cli.hpp"
+#include "gjklab/experiment/config.hpp"
+#include "gjklab/scene_file.hpp"
+
+namespace fs = std::filesystem;
+using gjklab::cli::parse_scene;
+using gjklab::experiment::ConfigError;
+
+namespace {
+
+const std::string kScene = R"([scene]
+name = "tiny"
+frames = 30
+pose_every = 5
+contacts_every = 5
+compare_broad_phases = true
+
+[physics]
+dt = 0.01
+
+[[static]]
+shape = "box"
+size = [10, 10, 1]
+position = [0, 0, -0.5]
+
+[[bodies]]
+shape = "cone"
+count = 3
+placement = "stack"
+position = [0, 0, 0.6]
+spacing = 1.1
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, "bad.toml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+int run_cli(std::vector<std::string> args, std::string& out_text, std::string& err_text) {
+  std::vector<const char*> argv{"gjklab"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::istringstream in;
+  std::ostringstream out, err;
+  const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
+  out_text = out.str();
+  err_text = err.str();
+  return status;
+}
+
+}  // namespace
+
+TEST_CASE("simulate: scene file errors name file, line and key", "[unit][scene]") {
+  CHECK(error_of(kScene + "\n[[bodies]]\nshape = \"cone\"\ncount = -1\n")
+            .find("bad.toml:25: key 'bodies[1].count'") == 0);
+  CHECK(error_of("[scene]\nframes = 0\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'scene.frames'") == 0);
+  CHECK(error_of("[physics]\ndt = \"fast\"\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'physics.dt': expected a number") == 0);
+  CHECK(error_of("[narrow_phase]\nalgorithm = \"gjk-bool\"\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'narrow_phase.algorithm'") == 0);
+  CHECK(error_of("[broad_phase]\nkind = \"octree\"\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'broad_phase.kind'") == 0);
+  CHECK(error_of("[[bodies]]\nshape = \"hull\"\npoints = [[0,0,0],[1,0,0],[0,1,0]]\n")
+            .find("bad.toml:3: key 'bodies[0].points': the hull has no volume") == 0);
+  CHECK(error_of("[[bodies]]\nshape = \"box\"\nplacement = \"random\"\ncount = 50\n"
+                 "region = [[0,0,0],[1,1,1]]\n")
+            .find("key 'bodies[0].region': cannot place body 2 of 50") != std::string::npos);
+  CHECK(error_of("[[bodies]]\nshape = \"teapot\"\n").find("bad.toml:2: key 'bodies[0].shape'") ==
+        0);
+  CHECK(error_of("[scene]\nspeed = 3\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'scene.speed': unknown key") == 0);
+  CHECK(error_of("[scene\n").find("bad.toml:1: TOML syntax error") == 0);
+  CHECK(error_of("[scene]\nname = \"x\"\n").find("a scene needs at least one [[bodies]]") !=
+        std::string::npos);
+}
+
+TEST_CASE("simulate: a small scene runs to a complete archive", "[unit][scene]") {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("gjklab-scene-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string scene = (dir / "tiny.toml").string();
+  const std::string archive = (dir / "tiny.h5").string();
+  std::ofstream(scene) << kScene;
+  std::string out, err;
+  REQUIRE(run_cli({"simulate", scene, "--out", archive}, out, err) == 0);
+  CHECK(out.find("scene tiny: 4 bodies, 30 frames") != std::string::npos);
+  CHECK(fs::exists(archive));
+  CHECK_FALSE(fs::exists(archive + ".tmp"));
+  // Kept without --force; replaced with it.
+  CHECK(run_cli({"simulate", scene, "--out", archive, "--frames", "5"}, out, err) == 1);
+  CHECK(err.find("exists") != std::string::npos);
+  CHECK(run_cli({"simulate", scene, "--out", archive, "--frames", "5", "--force"}, out, err) == 0);
+  CHECK(out.find("5 frames") != std::string::npos);
+  // A missing scene file is an error with its name, not a crash.
+  CHECK(run_cli({"simulate", (dir / "none.toml").string()}, out, err) == 1);
+  CHECK(err.find("none.toml") != std::string::npos);
+  fs::remove_all(dir);
+}
