@@ -1,28 +1,20 @@
 #include "gjklab/experiment/algorithm_options.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
+
+#include "gjklab/experiment/algorithms.hpp"
 
 namespace gjklab::experiment {
 
 namespace {
-
-bool is_libccd(std::string_view a) {
-  return a == "libccd-gjk" || a == "libccd-mpr";
-}
-bool is_libccd_depth(std::string_view a) {
-  return a == "libccd-gjk-epa" || a == "libccd-mpr-depth";
-}
-
-/// The GJK distance queries that take GjkDistanceOptions (gjk-nesterov takes its extension).
-bool uses_distance_options(std::string_view a) {
-  return a == "gjk-johnson" || a == "gjk-johnson-backup" || a == "gjk-sv" || a == "gjk-voronoi" ||
-         a == "gjk-polyak";
-}
 
 std::vector<double> numbers(std::string_view key, std::string_view text) {
   std::vector<double> out;
@@ -44,12 +36,6 @@ double number(std::string_view key, std::string_view text) {
     throw std::invalid_argument("expected one number, got '" + std::string(text) + "'");
   if (!std::isfinite(v[0])) throw std::invalid_argument("must be finite, got " + std::string(text));
   return v[0];
-}
-
-double non_negative(std::string_view key, std::string_view text) {
-  const double v = number(key, text);
-  if (!(v >= 0)) throw std::invalid_argument("must be >= 0, got " + round_trip(v));
-  return v;
 }
 
 int iterations(std::string_view key, std::string_view text) {
@@ -74,65 +60,275 @@ bool boolean(std::string_view text) {
   throw std::invalid_argument("expected true or false, got '" + std::string(text) + "'");
 }
 
-ScalarPrecision precision(std::string_view text) {
-  const auto p = precision_from_string(text);
-  if (!p)
-    throw std::invalid_argument("unknown precision '" + std::string(text) +
-                                "'; valid: float, double, long double");
-  return *p;
-}
-
 std::string text_of(const Vec3& d) {
   return round_trip(d.x()) + " " + round_trip(d.y()) + " " + round_trip(d.z());
 }
 
-/// Sets a key of GjkDistanceOptions; false if the key is not one of them.
-bool set_distance_option(GjkDistanceOptions& o, std::string_view key, std::string_view text) {
-  if (key == "max_iterations")
-    o.max_iterations = iterations(key, text);
-  else if (key == "relative_gap")
-    o.relative_gap = non_negative(key, text);
-  else if (key == "absolute_gap_squared")
-    o.absolute_gap_squared = non_negative(key, text);
-  else if (key == "duality_gap_tolerance")
-    o.duality_gap_tolerance = non_negative(key, text);
-  else if (key == "relative_contact")
-    o.relative_contact = non_negative(key, text);
-  else if (key == "initial_direction")
-    o.initial_direction = direction(key, text);
-  else if (key == "recenter")
-    o.recenter = boolean(text);
-  else if (key == "start") {
-    const auto start = distance_start_from_string(text);
-    if (!start)
-      throw std::invalid_argument("unknown start '" + std::string(text) +
-                                  "'; valid: fixed_direction, centre_direction");
-    o.start = *start;
-  } else if (key == "convergence") {
-    const auto c = convergence_from_string(text);
-    if (!c)
-      throw std::invalid_argument("unknown criterion '" + std::string(text) +
-                                  "'; valid: relative, absolute, duality_gap");
-    o.convergence = *c;
-  } else {
-    return false;
-  }
-  return true;
+// ---- reading and writing one value by its type ----
+
+/// What an error calls a value of an enum option, and the enum's values in order.
+template <class E>
+struct Choice;
+template <>
+struct Choice<ScalarPrecision> {
+  static constexpr std::string_view noun = "precision";
+  static constexpr std::array values = {
+      ScalarPrecision::single_float, ScalarPrecision::double_float, ScalarPrecision::long_double};
+};
+template <>
+struct Choice<GjkBooleanStart> {
+  static constexpr std::string_view noun = "start";
+  static constexpr std::array values = {GjkBooleanStart::fixed_direction,
+                                        GjkBooleanStart::centre_direction,
+                                        GjkBooleanStart::centre_point};
+};
+template <>
+struct Choice<GjkDistanceStart> {
+  static constexpr std::string_view noun = "start";
+  static constexpr std::array values = {GjkDistanceStart::fixed_direction,
+                                        GjkDistanceStart::centre_direction};
+};
+template <>
+struct Choice<GjkConvergence> {
+  static constexpr std::string_view noun = "criterion";
+  static constexpr std::array values = {GjkConvergence::relative, GjkConvergence::absolute,
+                                        GjkConvergence::duality_gap};
+};
+
+int parse(std::string_view key, std::string_view text, const OptionRange& range, int*) {
+  const int v = iterations(key, text);
+  if (v < range.min || v > range.max)
+    throw std::invalid_argument("must be in " + std::string(range.text) + ", got " +
+                                std::string(text));
+  return v;
 }
 
-std::vector<std::pair<std::string, std::string>> describe_distance(const GjkDistanceOptions& d) {
-  return {{"max_iterations", std::to_string(d.max_iterations)},
-          {"convergence", std::string(to_string(d.convergence))},
-          {"relative_gap", round_trip(d.relative_gap)},
-          {"absolute_gap_squared", round_trip(d.absolute_gap_squared)},
-          {"duality_gap_tolerance", round_trip(d.duality_gap_tolerance)},
-          {"relative_contact", round_trip(d.relative_contact)},
-          {"start", std::string(to_string(d.start))},
-          {"initial_direction", text_of(d.initial_direction)},
-          {"recenter", d.recenter ? "true" : "false"}};
+double parse(std::string_view key, std::string_view text, const OptionRange& range, double*) {
+  const double v = number(key, text);
+  if (range.min_exclusive && !(v > range.min))
+    throw std::invalid_argument("must be > " + round_trip(range.min) + ", got " + round_trip(v));
+  if (!(v >= range.min))
+    throw std::invalid_argument("must be >= " + round_trip(range.min) + ", got " + round_trip(v));
+  return v;
+}
+
+bool parse(std::string_view, std::string_view text, const OptionRange&, bool*) {
+  return boolean(text);
+}
+
+Vec3 parse(std::string_view key, std::string_view text, const OptionRange&, Vec3*) {
+  return direction(key, text);
+}
+
+template <class E>
+E parse(std::string_view, std::string_view text, const OptionRange&, E*) {
+  std::string valid;
+  for (E value : Choice<E>::values) {
+    if (to_string(value) == text) return value;
+    valid += (valid.empty() ? "" : ", ") + std::string(to_string(value));
+  }
+  throw std::invalid_argument("unknown " + std::string(Choice<E>::noun) + " '" + std::string(text) +
+                              "'; valid: " + valid);
+}
+
+std::string text(int v) {
+  return std::to_string(v);
+}
+std::string text(double v) {
+  return round_trip(v);
+}
+std::string text(bool v) {
+  return v ? "true" : "false";
+}
+std::string text(const Vec3& v) {
+  return text_of(v);
+}
+template <class E>
+requires std::is_enum_v<E> std::string text(E v) {
+  return std::string(to_string(v));
+}
+
+/// Sets the row's member from its text (validated by the member's type and the row's range).
+void apply(const OptionRow& row, AlgorithmOptions& o, std::string_view value) {
+  std::visit(
+      [&](auto access) {
+        auto& member = access(o);
+        member = parse(row.key, value, row.range, &member);
+      },
+      row.member);
+}
+
+/// The row's member as text.
+std::string describe(const OptionRow& row, const AlgorithmOptions& o) {
+  AlgorithmOptions copy = o;  // the accessors take a mutable struct; a copy keeps `o` const
+  return std::visit([&](auto access) { return text(access(copy)); }, row.member);
+}
+
+// ---- the schemas ----
+
+/// The keys of GjkDistanceOptions, on the member `Options` returns (gjk_distance, or
+/// gjk_nesterov, which extends it).
+template <auto Options>
+constexpr std::array<OptionRow, 9> distance_rows() {
+  return {{
+      {"max_iterations", [](AlgorithmOptions& o) -> int& { return Options(o).max_iterations; }},
+      {"convergence",
+       [](AlgorithmOptions& o) -> GjkConvergence& { return Options(o).convergence; }},
+      {"relative_gap", [](AlgorithmOptions& o) -> double& { return Options(o).relative_gap; },
+       kNonNegative},
+      {"absolute_gap_squared",
+       [](AlgorithmOptions& o) -> double& { return Options(o).absolute_gap_squared; },
+       kNonNegative},
+      {"duality_gap_tolerance",
+       [](AlgorithmOptions& o) -> double& { return Options(o).duality_gap_tolerance; },
+       kNonNegative},
+      {"relative_contact",
+       [](AlgorithmOptions& o) -> double& { return Options(o).relative_contact; }, kNonNegative},
+      {"start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return Options(o).start; }},
+      {"initial_direction",
+       [](AlgorithmOptions& o) -> Vec3& { return Options(o).initial_direction; }},
+      {"recenter", [](AlgorithmOptions& o) -> bool& { return Options(o).recenter; }},
+  }};
+}
+
+GjkDistanceOptions& distance_options(AlgorithmOptions& o) {
+  return o.gjk_distance;
+}
+GjkNesterovOptions& nesterov_options(AlgorithmOptions& o) {
+  return o.gjk_nesterov;
+}
+
+constexpr OptionRow kPrecisionRow{
+    "precision", [](AlgorithmOptions& o) -> ScalarPrecision& { return o.precision; }};
+
+/// Rows followed by more rows, in one array.
+template <std::size_t N, std::size_t M>
+constexpr std::array<OptionRow, N + M> join(const std::array<OptionRow, N>& a,
+                                            const std::array<OptionRow, M>& b) {
+  std::array<OptionRow, N + M> out{};
+  for (std::size_t i = 0; i < N; ++i)
+    out[i] = a[i];
+  for (std::size_t i = 0; i < M; ++i)
+    out[N + i] = b[i];
+  return out;
+}
+
+constexpr auto kGjkBooleanRows = std::to_array<OptionRow>({
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.gjk_boolean.max_iterations; }},
+    {"start", [](AlgorithmOptions& o) -> GjkBooleanStart& { return o.gjk_boolean.start; }},
+    {"initial_direction",
+     [](AlgorithmOptions& o) -> Vec3& { return o.gjk_boolean.initial_direction; }},
+    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_boolean.recenter; }},
+    kPrecisionRow,
+});
+
+constexpr auto kGjkDistanceRows =
+    join(distance_rows<distance_options>(), std::array<OptionRow, 1>{kPrecisionRow});
+
+constexpr auto kGjkNesterovRows =
+    join(distance_rows<nesterov_options>(),
+         std::to_array<OptionRow>({
+             {"normalize_direction",
+              [](AlgorithmOptions& o) -> bool& { return o.gjk_nesterov.normalize_direction; }},
+             kPrecisionRow,
+         }));
+
+constexpr auto kEpaRows = std::to_array<OptionRow>({
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.epa.max_iterations; }},
+    // EPA's own bound (epa.hpp), checked here so that the error names the file and line.
+    {"max_faces",
+     [](AlgorithmOptions& o) -> int& { return o.epa.max_faces; },
+     {.min = 4, .max = 1 << 26, .text = "[4, 2^26]"}},
+    {"epa_relative_gap", [](AlgorithmOptions& o) -> double& { return o.epa.relative_gap; },
+     kNonNegative},
+    {"relative_noise", [](AlgorithmOptions& o) -> double& { return o.epa.relative_noise; },
+     kNonNegative},
+    // Its GJK phase runs gjk-johnson with gjk_distance.
+    {"gjk_max_iterations",
+     [](AlgorithmOptions& o) -> int& { return o.gjk_distance.max_iterations; }},
+    {"gjk_start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return o.gjk_distance.start; }},
+    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_distance.recenter; }},
+    kPrecisionRow,
+});
+
+constexpr auto kLibccdRows = std::to_array<OptionRow>({
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; }},
+    {"mpr_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.mpr_tolerance; },
+     kPositive},
+});
+
+constexpr auto kLibccdDepthRows = std::to_array<OptionRow>({
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; }},
+    {"max_depth_iterations",
+     [](AlgorithmOptions& o) -> int& { return o.libccd.max_depth_iterations; }},
+    {"mpr_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.mpr_tolerance; },
+     kPositive},
+    {"epa_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.epa_tolerance; },
+     kPositive},
+});
+
+constexpr auto kSatRows = std::to_array<OptionRow>({
+    {"early_exit", [](AlgorithmOptions& o) -> bool& { return o.sat.early_exit; }},
+});
+
+#ifdef GJKLAB_HAVE_FCL
+constexpr auto kFclRows = std::to_array<OptionRow>({
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.max_iterations; }},
+    {"epa_max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_iterations; }},
+    {"epa_max_faces", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_faces; }},
+    {"epa_max_vertices", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_vertices; }},
+});
+#endif
+
+// The oracle's depth flag comes from the experiment's [oracle] table; the archive records it
+// with the `exact` algorithm so that replay asks for the same answer.
+constexpr auto kExactRows = std::to_array<OptionRow>({
+    {"depth", [](AlgorithmOptions& o) -> bool& { return o.oracle.depth; }, {}, OptionUse::recorded},
+});
+
+/// The schema of a registered algorithm; empty for an unknown name.
+OptionSchema schema_of(std::string_view algorithm) {
+  const AlgorithmInfo* info = find_algorithm(algorithm);
+  return info ? info->options : OptionSchema{};
+}
+
+const OptionRow* find_row(OptionSchema schema, std::string_view key) {
+  for (const OptionRow& row : schema)
+    if (row.key == key) return &row;
+  return nullptr;
 }
 
 }  // namespace
+
+OptionSchema gjk_boolean_option_schema() {
+  return kGjkBooleanRows;
+}
+OptionSchema gjk_distance_option_schema() {
+  return kGjkDistanceRows;
+}
+OptionSchema gjk_nesterov_option_schema() {
+  return kGjkNesterovRows;
+}
+OptionSchema epa_option_schema() {
+  return kEpaRows;
+}
+OptionSchema libccd_option_schema() {
+  return kLibccdRows;
+}
+OptionSchema libccd_depth_option_schema() {
+  return kLibccdDepthRows;
+}
+OptionSchema sat_option_schema() {
+  return kSatRows;
+}
+#ifdef GJKLAB_HAVE_FCL
+OptionSchema fcl_option_schema() {
+  return kFclRows;
+}
+#endif
+OptionSchema exact_option_schema() {
+  return kExactRows;
+}
 
 std::string round_trip(double x) {
   char buffer[64];
@@ -141,164 +337,24 @@ std::string round_trip(double x) {
 }
 
 std::vector<std::string_view> option_keys(std::string_view algorithm) {
-  static const std::vector<std::string_view> distance = {"max_iterations",
-                                                         "convergence",
-                                                         "relative_gap",
-                                                         "absolute_gap_squared",
-                                                         "duality_gap_tolerance",
-                                                         "relative_contact",
-                                                         "start",
-                                                         "initial_direction",
-                                                         "recenter",
-                                                         "precision"};
-  if (algorithm == "gjk-bool")
-    return {"max_iterations", "start", "initial_direction", "recenter", "precision"};
-  if (uses_distance_options(algorithm)) return distance;
-  if (algorithm == "gjk-nesterov") {
-    auto keys = distance;
-    keys.push_back("normalize_direction");
-    return keys;
-  }
-  if (is_libccd(algorithm)) return {"max_iterations", "mpr_tolerance"};
-  if (is_libccd_depth(algorithm))
-    return {"max_iterations", "max_depth_iterations", "mpr_tolerance", "epa_tolerance"};
-  if (algorithm == "epa")
-    return {"max_iterations",     "max_faces", "epa_relative_gap", "relative_noise",
-            "gjk_max_iterations", "gjk_start", "recenter",         "precision"};
-  if (algorithm == "sat") return {"early_exit"};
-#ifdef GJKLAB_HAVE_FCL
-  if (algorithm == "fcl-libccd" || algorithm == "fcl-indep")
-    return {"max_iterations", "epa_max_iterations", "epa_max_faces", "epa_max_vertices"};
-#endif
-  return {};
+  std::vector<std::string_view> keys;
+  for (const OptionRow& row : schema_of(algorithm))
+    if (row.use == OptionUse::setting) keys.push_back(row.key);
+  return keys;
 }
 
 void set_option(AlgorithmSpec& spec, std::string_view key, std::string_view text) {
-  const auto keys = option_keys(spec.name);
-  if (std::find(keys.begin(), keys.end(), key) == keys.end())
+  const OptionRow* row = find_row(schema_of(spec.name), key);
+  if (!row || row->use != OptionUse::setting)
     throw std::invalid_argument("option '" + std::string(key) + "' does not apply to " + spec.name);
-  AlgorithmOptions& o = spec.options;
-  const std::string& n = spec.name;
-  if (key == "precision") {  // every GJK query takes it (option_keys decides which)
-    o.precision = precision(text);
-    return;
-  }
-  if (n == "gjk-bool") {
-    if (key == "max_iterations") {
-      o.gjk_boolean.max_iterations = iterations(key, text);
-    } else if (key == "recenter") {
-      o.gjk_boolean.recenter = boolean(text);
-    } else if (key == "start") {
-      const auto start = boolean_start_from_string(text);
-      if (!start)
-        throw std::invalid_argument("unknown start '" + std::string(text) +
-                                    "'; valid: fixed_direction, centre_direction, centre_point");
-      o.gjk_boolean.start = *start;
-    } else {
-      o.gjk_boolean.initial_direction = direction(key, text);
-    }
-  } else if (uses_distance_options(n)) {
-    set_distance_option(o.gjk_distance, key, text);
-  } else if (n == "gjk-nesterov") {
-    if (key == "normalize_direction")
-      o.gjk_nesterov.normalize_direction = boolean(text);
-    else
-      set_distance_option(o.gjk_nesterov, key, text);
-  } else if (is_libccd(n) || is_libccd_depth(n)) {
-    if (key == "max_iterations") {
-      o.libccd.max_iterations = iterations(key, text);
-    } else if (key == "max_depth_iterations") {
-      o.libccd.max_depth_iterations = iterations(key, text);
-    } else {
-      const double v = number(key, text);
-      if (!(v > 0)) throw std::invalid_argument("must be > 0, got " + round_trip(v));
-      (key == "mpr_tolerance" ? o.libccd.mpr_tolerance : o.libccd.epa_tolerance) = v;
-    }
-  } else if (n == "sat") {
-    o.sat.early_exit = boolean(text);
-#ifdef GJKLAB_HAVE_FCL
-  } else if (n == "fcl-libccd" || n == "fcl-indep") {
-    const int v = iterations(key, text);
-    if (key == "max_iterations")
-      o.fcl.max_iterations = v;
-    else if (key == "epa_max_iterations")
-      o.fcl.epa_max_iterations = v;
-    else if (key == "epa_max_faces")
-      o.fcl.epa_max_faces = v;
-    else
-      o.fcl.epa_max_vertices = v;
-#endif
-  } else if (n == "epa") {
-    if (key == "max_iterations")
-      o.epa.max_iterations = iterations(key, text);
-    else if (key == "max_faces") {
-      o.epa.max_faces = iterations(key, text);
-      // EPA's own bound (epa.hpp), checked here so that the error names the file and line.
-      if (o.epa.max_faces < 4 || o.epa.max_faces > (1 << 26))
-        throw std::invalid_argument("must be in [4, 2^26], got " + std::string(text));
-    } else if (key == "gjk_max_iterations")
-      o.gjk_distance.max_iterations = iterations(key, text);
-    else if (key == "gjk_start")
-      set_distance_option(o.gjk_distance, "start", text);
-    else if (key == "recenter")
-      set_distance_option(o.gjk_distance, "recenter", text);
-    else if (key == "epa_relative_gap")
-      o.epa.relative_gap = non_negative(key, text);
-    else
-      o.epa.relative_noise = non_negative(key, text);
-  }
+  apply(*row, spec.options, text);
 }
 
 std::vector<std::pair<std::string, std::string>> describe_options(const AlgorithmSpec& spec) {
-  const AlgorithmOptions& o = spec.options;
-  const std::string& n = spec.name;
-  const std::pair<std::string, std::string> precision{"precision",
-                                                      std::string(to_string(o.precision))};
-  if (n == "gjk-bool")
-    return {{"max_iterations", std::to_string(o.gjk_boolean.max_iterations)},
-            {"start", std::string(to_string(o.gjk_boolean.start))},
-            {"initial_direction", text_of(o.gjk_boolean.initial_direction)},
-            {"recenter", o.gjk_boolean.recenter ? "true" : "false"},
-            precision};
-  if (uses_distance_options(n)) {
-    auto described = describe_distance(o.gjk_distance);
-    described.push_back(precision);
-    return described;
-  }
-  if (n == "gjk-nesterov") {
-    auto described = describe_distance(o.gjk_nesterov);
-    described.emplace_back("normalize_direction",
-                           o.gjk_nesterov.normalize_direction ? "true" : "false");
-    described.push_back(precision);
-    return described;
-  }
-  if (is_libccd(n))
-    return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
-            {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)}};
-  if (is_libccd_depth(n))
-    return {{"max_iterations", std::to_string(o.libccd.max_iterations)},
-            {"max_depth_iterations", std::to_string(o.libccd.max_depth_iterations)},
-            {"mpr_tolerance", round_trip(o.libccd.mpr_tolerance)},
-            {"epa_tolerance", round_trip(o.libccd.epa_tolerance)}};
-  if (n == "epa")
-    return {{"max_iterations", std::to_string(o.epa.max_iterations)},
-            {"max_faces", std::to_string(o.epa.max_faces)},
-            {"epa_relative_gap", round_trip(o.epa.relative_gap)},
-            {"relative_noise", round_trip(o.epa.relative_noise)},
-            {"gjk_max_iterations", std::to_string(o.gjk_distance.max_iterations)},
-            {"gjk_start", std::string(to_string(o.gjk_distance.start))},
-            {"recenter", o.gjk_distance.recenter ? "true" : "false"},
-            precision};
-  if (n == "sat") return {{"early_exit", o.sat.early_exit ? "true" : "false"}};
-#ifdef GJKLAB_HAVE_FCL
-  if (n == "fcl-libccd" || n == "fcl-indep")
-    return {{"max_iterations", std::to_string(o.fcl.max_iterations)},
-            {"epa_max_iterations", std::to_string(o.fcl.epa_max_iterations)},
-            {"epa_max_faces", std::to_string(o.fcl.epa_max_faces)},
-            {"epa_max_vertices", std::to_string(o.fcl.epa_max_vertices)}};
-#endif
-  if (n == "exact") return {{"depth", o.oracle.depth ? "true" : "false"}};
-  return {};
+  std::vector<std::pair<std::string, std::string>> described;
+  for (const OptionRow& row : schema_of(spec.name))
+    described.emplace_back(std::string(row.key), describe(row, spec.options));
+  return described;
 }
 
 AlgorithmSpec spec_from_description(const std::string& name,
@@ -326,7 +382,9 @@ AlgorithmSpec spec_from_description(const std::string& name,
   for (const auto& [key, value] : text) {
     if (key == "algorithm") continue;  // the registry name, archived with the options
     try {
-      set_option(spec, key, value);
+      const OptionRow* row = find_row(schema_of(name), key);
+      if (!row) throw std::invalid_argument("option '" + key + "' does not apply to " + name);
+      apply(*row, spec.options, value);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("option '" + key + "' of " + name + ": " + e.what());
     }

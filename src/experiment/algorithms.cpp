@@ -258,23 +258,24 @@ Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRa
 /// The registry entry of a GJK distance variant: plain, traced and sphere-swept runs of one
 /// core query.
 template <DistanceQuery Query, TracedDistanceQuery Traced, class AnyPrecision>
-constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description) {
-  return {name,
-          AnswerKind::distance,
-          description,
-          run_distance<Query>,
-          trace_distance<Traced>,
-          false,
-          false,
-          run_swept_distance<Query>,
-          trace_swept_distance<Traced>,
-          at_precision<DistanceIn<AnyPrecision>::template At>};
+constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description,
+                                           OptionSchema options) {
+  return {.name = name,
+          .kind = AnswerKind::distance,
+          .description = description,
+          .run = run_distance<Query>,
+          .run_traced = trace_distance<Traced>,
+          .run_swept = run_swept_distance<Query>,
+          .run_swept_traced = trace_swept_distance<Traced>,
+          .run_at_precision = at_precision<DistanceIn<AnyPrecision>::template At>,
+          .options = options};
 }
 
+/// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance.
 template <class Sub>
-constexpr AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
+AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
   return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>, SubAlgorithmQuery<Sub>>(
-      name, description);
+      name, description, gjk_distance_option_schema());
 }
 
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
@@ -512,77 +513,144 @@ Outcome at_zero_radii(const Polytope& a, const Polytope& b, const AlgorithmOptio
 }
 
 // The optional peers (FCL, Bullet) are listed only when they were built.
-constexpr std::array kAlgorithms = {
-    AlgorithmInfo{"gjk-bool", AnswerKind::boolean,
-                  "boolean GJK walking a simplex with triple-product directions", run_gjk_bool,
-                  trace_gjk_bool, false, false, swept_gjk_bool, swept_trace_gjk_bool,
-                  at_precision<GjkBoolIn>},
-    gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
-                                           "GJK distance with Johnson's distance sub-algorithm"),
-    AlgorithmInfo{"libccd-gjk", AnswerKind::boolean, "libccd's ccdGJKIntersect",
-                  at_zero_radii<swept_libccd_gjk>, nullptr, true, false, swept_libccd_gjk},
-    AlgorithmInfo{"libccd-mpr", AnswerKind::boolean, "libccd's ccdMPRIntersect",
-                  at_zero_radii<swept_libccd_mpr>, nullptr, true, false, swept_libccd_mpr},
-    gjk_variant_entry<JohnsonBackupSubAlgorithm>(
-        "gjk-johnson-backup",
-        "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
-    gjk_variant_entry<SignedVolumesSubAlgorithm>(
-        "gjk-sv", "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)"),
-    gjk_variant_entry<VoronoiSubAlgorithm>("gjk-voronoi",
-                                           "GJK distance with Voronoi-region tests (Ericson 2005)"),
-    gjk_distance_entry<nesterov_distance, traced_nesterov_distance, NesterovQuery>(
-        "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes"),
-    gjk_distance_entry<polyak_distance, traced_polyak_distance, PolyakQuery>(
-        "gjk-polyak",
-        "Polyak-accelerated GJK distance (GJK++, Montaut et al. 2024), signed volumes"),
-    AlgorithmInfo{"epa", AnswerKind::distance,
-                  "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
-                  run_epa, nullptr, false, true, swept_epa, nullptr, at_precision<EpaIn>},
-    AlgorithmInfo{"sat", AnswerKind::boolean,
-                  "separating axis test on exact hull features (face normals, edge cross "
-                  "products) with the minimum-overlap depth",
-                  run_sat, nullptr, false, true},
-    AlgorithmInfo{"libccd-gjk-epa", AnswerKind::boolean,
-                  "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
-                  at_zero_radii<swept_libccd_gjk_epa>, nullptr, true, true, swept_libccd_gjk_epa},
-    AlgorithmInfo{"libccd-mpr-depth", AnswerKind::boolean, "libccd's ccdMPRPenetration",
-                  at_zero_radii<swept_libccd_mpr_depth>, nullptr, true, true,
-                  swept_libccd_mpr_depth},
+// The registry: one entry per algorithm, each built from its query (and the traced, swept and
+// other-precision forms where it has them) and its option schema. Built on first use: the
+// schemas live in another translation unit, so the table is not a compile-time constant and
+// must not depend on the order of static initialisation.
+const auto& registry() {
+  static const std::array entries = {
+      AlgorithmInfo{.name = "gjk-bool",
+                    .kind = AnswerKind::boolean,
+                    .description = "boolean GJK walking a simplex with triple-product directions",
+                    .run = run_gjk_bool,
+                    .run_traced = trace_gjk_bool,
+                    .run_swept = swept_gjk_bool,
+                    .run_swept_traced = swept_trace_gjk_bool,
+                    .run_at_precision = at_precision<GjkBoolIn>,
+                    .options = gjk_boolean_option_schema()},
+      gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
+                                             "GJK distance with Johnson's distance sub-algorithm"),
+      AlgorithmInfo{.name = "libccd-gjk",
+                    .kind = AnswerKind::boolean,
+                    .description = "libccd's ccdGJKIntersect",
+                    .run = at_zero_radii<swept_libccd_gjk>,
+                    .peer = true,
+                    .run_swept = swept_libccd_gjk,
+                    .options = libccd_option_schema()},
+      AlgorithmInfo{.name = "libccd-mpr",
+                    .kind = AnswerKind::boolean,
+                    .description = "libccd's ccdMPRIntersect",
+                    .run = at_zero_radii<swept_libccd_mpr>,
+                    .peer = true,
+                    .run_swept = swept_libccd_mpr,
+                    .options = libccd_option_schema()},
+      gjk_variant_entry<JohnsonBackupSubAlgorithm>(
+          "gjk-johnson-backup",
+          "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
+      gjk_variant_entry<SignedVolumesSubAlgorithm>(
+          "gjk-sv", "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)"),
+      gjk_variant_entry<VoronoiSubAlgorithm>(
+          "gjk-voronoi", "GJK distance with Voronoi-region tests (Ericson 2005)"),
+      gjk_distance_entry<nesterov_distance, traced_nesterov_distance, NesterovQuery>(
+          "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
+          gjk_nesterov_option_schema()),
+      gjk_distance_entry<polyak_distance, traced_polyak_distance, PolyakQuery>(
+          "gjk-polyak",
+          "Polyak-accelerated GJK distance (GJK++, Montaut et al. 2024), signed volumes",
+          gjk_distance_option_schema()),
+      AlgorithmInfo{
+          .name = "epa",
+          .kind = AnswerKind::distance,
+          .description =
+              "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
+          .run = run_epa,
+          .depth = true,
+          .run_swept = swept_epa,
+          .run_at_precision = at_precision<EpaIn>,
+          .options = epa_option_schema()},
+      AlgorithmInfo{.name = "sat",
+                    .kind = AnswerKind::boolean,
+                    .description = "separating axis test on exact hull features (face normals, "
+                                   "edge cross products) with the minimum-overlap depth",
+                    .run = run_sat,
+                    .depth = true,
+                    .options = sat_option_schema()},
+      AlgorithmInfo{
+          .name = "libccd-gjk-epa",
+          .kind = AnswerKind::boolean,
+          .description = "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
+          .run = at_zero_radii<swept_libccd_gjk_epa>,
+          .peer = true,
+          .depth = true,
+          .run_swept = swept_libccd_gjk_epa,
+          .options = libccd_depth_option_schema()},
+      AlgorithmInfo{.name = "libccd-mpr-depth",
+                    .kind = AnswerKind::boolean,
+                    .description = "libccd's ccdMPRPenetration",
+                    .run = at_zero_radii<swept_libccd_mpr_depth>,
+                    .peer = true,
+                    .depth = true,
+                    .run_swept = swept_libccd_mpr_depth,
+                    .options = libccd_depth_option_schema()},
 #ifdef GJKLAB_HAVE_FCL
-    AlgorithmInfo{"fcl-libccd", AnswerKind::distance,
-                  "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)",
-                  run_fcl_libccd, nullptr, true, true},
-    AlgorithmInfo{"fcl-indep", AnswerKind::distance,
-                  "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)", run_fcl_indep,
-                  nullptr, true, true},
+      AlgorithmInfo{.name = "fcl-libccd",
+                    .kind = AnswerKind::distance,
+                    .description = "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; "
+                                   "distance: GJK)",
+                    .run = run_fcl_libccd,
+                    .peer = true,
+                    .depth = true,
+                    .options = fcl_option_schema()},
+      AlgorithmInfo{.name = "fcl-indep",
+                    .kind = AnswerKind::distance,
+                    .description = "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)",
+                    .run = run_fcl_indep,
+                    .peer = true,
+                    .depth = true,
+                    .options = fcl_option_schema()},
 #endif
 #ifdef GJKLAB_HAVE_BULLET
-    AlgorithmInfo{"bullet-gjk", AnswerKind::distance,
-                  "Bullet's btGjkPairDetector (Voronoi simplex solver, GJK-EPA penetration), "
-                  "margins 0",
-                  run_bullet_gjk, nullptr, true, true},
-    AlgorithmInfo{"bullet-epa2", AnswerKind::distance,
-                  "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0",
-                  run_bullet_epa2, nullptr, true, true},
+      AlgorithmInfo{.name = "bullet-gjk",
+                    .kind = AnswerKind::distance,
+                    .description = "Bullet's btGjkPairDetector (Voronoi simplex solver, GJK-EPA "
+                                   "penetration), margins 0",
+                    .run = run_bullet_gjk,
+                    .peer = true,
+                    .depth = true},
+      AlgorithmInfo{
+          .name = "bullet-epa2",
+          .kind = AnswerKind::distance,
+          .description = "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0",
+          .run = run_bullet_epa2,
+          .peer = true,
+          .depth = true},
 #endif
-    AlgorithmInfo{"gjk-certified", AnswerKind::distance,
-                  "gjk-johnson and EPA, verified by exact certificates (CGAL's QP as fallback): "
-                  "exact answers",
-                  at_zero_radii<swept_gjk_certified>, nullptr, false, false, swept_gjk_certified},
-    AlgorithmInfo{"exact", AnswerKind::exact,
-                  "exact answer in rational arithmetic: certified from gjklab's own GJK/EPA, "
-                  "CGAL's QP where no certificate holds",
-                  at_zero_radii<swept_exact>, nullptr, false, true, swept_exact},
-};
+      AlgorithmInfo{.name = "gjk-certified",
+                    .kind = AnswerKind::distance,
+                    .description = "gjk-johnson and EPA, verified by exact certificates (CGAL's QP "
+                                   "as fallback): exact answers",
+                    .run = at_zero_radii<swept_gjk_certified>,
+                    .run_swept = swept_gjk_certified},
+      AlgorithmInfo{.name = "exact",
+                    .kind = AnswerKind::exact,
+                    .description = "exact answer in rational arithmetic: certified from gjklab's "
+                                   "own GJK/EPA, CGAL's QP where no certificate holds",
+                    .run = at_zero_radii<swept_exact>,
+                    .depth = true,
+                    .run_swept = swept_exact,
+                    .options = exact_option_schema()},
+  };
+  return entries;
+}
 
 }  // namespace
 
 std::span<const AlgorithmInfo> algorithms() {
-  return kAlgorithms;
+  return registry();
 }
 
 const AlgorithmInfo* find_algorithm(std::string_view name) {
-  for (const AlgorithmInfo& a : kAlgorithms)
+  for (const AlgorithmInfo& a : registry())
     if (a.name == name) return &a;
   return nullptr;
 }
@@ -647,7 +715,7 @@ Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, 
 
 std::string algorithm_names() {
   std::string names;
-  for (const AlgorithmInfo& a : kAlgorithms) {
+  for (const AlgorithmInfo& a : registry()) {
     if (!names.empty()) names += ", ";
     names += a.name;
   }

@@ -1,6 +1,7 @@
 // Options of the registered algorithms by key: which keys each algorithm takes, setting them
 // from text (experiment files, sweeps and archives all go through it) and describing them as
-// text (archives).
+// text (archives). All of them walk the rows of the algorithm's option schema, given by its
+// registry entry (AlgorithmInfo::options, option_schema.hpp).
 #pragma once
 
 #include <string>

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/option_schema.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/options.hpp"
@@ -97,6 +98,9 @@ struct AlgorithmInfo {
   /// polytopes) and a trace when `trace` is not null. run_algorithm dispatches to it.
   Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
                               const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
+  /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
+  /// archive's description and replay all follow from it.
+  OptionSchema options = {};
 };
 
 /// Whether the algorithm can run in another precision than double (options.precision).
