@@ -1,10 +1,15 @@
 // The HDF5 results archive's reader. The columns of every group come from the schema tables
 // (archive_schema.hpp); results/README.md documents them.
 
+#include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <span>
@@ -279,7 +284,41 @@ Archive read_archive(const fs::path& path) {
 
 namespace {
 
-/// Reads the archive in a forked child; throws ArchiveError if the child failed or crashed.
+/// How long the isolated read of an archive may take, in seconds: 60, or one per 10 MB of file
+/// if that is more (reads run at hundreds of MB/s; libhdf5 loops forever on some corrupt
+/// global heaps). GJKLAB_ARCHIVE_READ_SECONDS overrides it (a positive number).
+double read_time_limit(const fs::path& path) {
+  if (const char* text = std::getenv("GJKLAB_ARCHIVE_READ_SECONDS")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    if (end != text && *end == '\0' && seconds > 0 && seconds < 1e7) return seconds;
+  }
+  std::error_code ec;
+  const auto bytes = fs::file_size(path, ec);
+  return std::max(60.0, ec ? 0.0 : static_cast<double>(bytes) / 1e7);
+}
+
+/// Reads the child's message until it closes the pipe; false if the time limit passed first.
+bool read_until_closed(int fd, double seconds, std::string& message) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+  char buffer[4096];
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) return true;  // cannot wait: let waitpid decide
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n <= 0) return true;  // closed: the child has finished (or is finishing)
+    message.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+/// Reads the archive in a forked child; throws ArchiveError if the child failed, crashed or
+/// did not finish within the time limit (then it is killed).
 void probe_in_child(const fs::path& path) {
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) return;  // cannot isolate: the caller reads unguarded
@@ -305,13 +344,18 @@ void probe_in_child(const fs::path& path) {
   }
   ::close(pipe_fds[1]);
   std::string message;
-  char buffer[4096];
-  for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;)
-    message.append(buffer, static_cast<std::size_t>(n));
+  const double limit = read_time_limit(path);
+  const bool finished = read_until_closed(pipe_fds[0], limit, message);
   ::close(pipe_fds[0]);
+  if (!finished) ::kill(child, SIGKILL);
   int status = 0;
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
+  if (!finished)
+    throw ArchiveError(path.string() + ": corrupt: reading it did not finish within " +
+                       std::to_string(static_cast<long long>(limit)) +
+                       " s (the HDF5 library loops on it); the file cannot be used "
+                       "(GJKLAB_ARCHIVE_READ_SECONDS sets the limit)");
   if (WIFSIGNALED(status))
     throw ArchiveError(path.string() + ": corrupt: reading it made the HDF5 library crash (" +
                        ::strsignal(WTERMSIG(status)) + "); the file cannot be used");

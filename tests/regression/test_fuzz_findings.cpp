@@ -3,6 +3,7 @@
 // regression/data/hostile/, named after what they hold.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <variant>
 
@@ -91,6 +92,19 @@ TEST_CASE("archive with one byte of /cases/shape_a's enum type flipped: an error
   CHECK_THROWS_AS(experiment::read_archive_isolated(
                       hostile("archive_shape_a_enum_type_byte_flipped_hdf5_overread.h5")),
                   experiment::ArchiveError);
+}
+
+TEST_CASE("archive whose experiment_name attribute points into a corrupt global heap: an error "
+          "after the time limit, not a read that never ends",
+          "[regression][hostile][fuzz]") {
+  // Found by fuzzing the archive reader: libhdf5 loops forever in H5HG_read on this file while
+  // reading the root attribute experiment_name. The isolated reader's child is killed when the
+  // time limit (GJKLAB_ARCHIVE_READ_SECONDS, here 2 s) passes, and the file reported corrupt.
+  ::setenv("GJKLAB_ARCHIVE_READ_SECONDS", "2", 1);
+  CHECK_THROWS_WITH(experiment::read_archive_isolated(
+                        hostile("archive_experiment_name_global_heap_hang.h5")),
+                    Catch::Contains("did not finish within 2 s"));
+  ::unsetenv("GJKLAB_ARCHIVE_READ_SECONDS");
 }
 
 #ifdef GJKLAB_HAVE_FCL
