@@ -1,125 +1,78 @@
 #include "gjklab/experiment/records.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace gjklab::experiment {
 
+namespace {
+
+// One name per enumerator, in value order (these enums count from 0 without gaps). to_string
+// reads them, and through it the archive's HDF5 enum types, the summaries and the experiment
+// parser's lists of valid names.
+constexpr std::array<std::string_view, 5> kPlacementNames = {"separated", "overlapping", "random",
+                                                             "touching", "as_given"};
+constexpr std::array<std::string_view, 3> kContactClassNames = {"separated", "touching_band",
+                                                                "intersecting"};
+constexpr std::array<std::string_view, 19> kShapeKindNames = {"sphere_points",
+                                                              "ball_points",
+                                                              "cube_points",
+                                                              "gaussian",
+                                                              "box",
+                                                              "cone",
+                                                              "cylinder",
+                                                              "uv_sphere",
+                                                              "flat_points",
+                                                              "collinear_points",
+                                                              "duplicate_points",
+                                                              "single_point",
+                                                              "sliver",
+                                                              "prism",
+                                                              "pyramid",
+                                                              "from_file",
+                                                              "mesh",
+                                                              "sphere",
+                                                              "capsule"};
+constexpr std::array<std::string_view, 8> kContactTypeNames = {
+    "none",      "face-face",   "edge-edge",     "vertex-face",
+    "edge-face", "vertex-edge", "vertex-vertex", "parallel-edges"};
+constexpr std::array<std::string_view, 9> kFailureClassNames = {
+    "none",    "touching_band", "step_limit",    "no_progress",   "degenerate_simplex",
+    "cycling", "non_finite",    "wrong_boolean", "distance_error"};
+
+// Each table ends at the enum's last enumerator.
+static_assert(kPlacementNames.size() == static_cast<std::size_t>(Placement::as_given) + 1);
+static_assert(kContactClassNames.size() ==
+              static_cast<std::size_t>(ContactClass::intersecting) + 1);
+static_assert(kShapeKindNames.size() == static_cast<std::size_t>(ShapeKind::capsule) + 1);
+static_assert(kContactTypeNames.size() ==
+              static_cast<std::size_t>(ContactType::parallel_edges) + 1);
+static_assert(kFailureClassNames.size() ==
+              static_cast<std::size_t>(FailureClass::distance_error) + 1);
+
+/// The value's name, or "unknown" for a value past the table (a corrupt or foreign byte).
+template <class E, std::size_t N>
+std::string_view name_in(const std::array<std::string_view, N>& names, E value) {
+  const auto i = static_cast<std::size_t>(value);
+  return i < N ? names[i] : "unknown";
+}
+
+}  // namespace
+
 std::string_view to_string(Placement p) {
-  switch (p) {
-    case Placement::separated:
-      return "separated";
-    case Placement::overlapping:
-      return "overlapping";
-    case Placement::random:
-      return "random";
-    case Placement::touching:
-      return "touching";
-    case Placement::as_given:
-      return "as_given";
-  }
-  return "unknown";
+  return name_in(kPlacementNames, p);
 }
-
 std::string_view to_string(ContactClass c) {
-  switch (c) {
-    case ContactClass::separated:
-      return "separated";
-    case ContactClass::touching_band:
-      return "touching_band";
-    case ContactClass::intersecting:
-      return "intersecting";
-  }
-  return "unknown";
+  return name_in(kContactClassNames, c);
 }
-
 std::string_view to_string(ShapeKind s) {
-  switch (s) {
-    case ShapeKind::sphere_points:
-      return "sphere_points";
-    case ShapeKind::ball_points:
-      return "ball_points";
-    case ShapeKind::cube_points:
-      return "cube_points";
-    case ShapeKind::gaussian:
-      return "gaussian";
-    case ShapeKind::box:
-      return "box";
-    case ShapeKind::cone:
-      return "cone";
-    case ShapeKind::cylinder:
-      return "cylinder";
-    case ShapeKind::uv_sphere:
-      return "uv_sphere";
-    case ShapeKind::flat_points:
-      return "flat_points";
-    case ShapeKind::collinear_points:
-      return "collinear_points";
-    case ShapeKind::duplicate_points:
-      return "duplicate_points";
-    case ShapeKind::single_point:
-      return "single_point";
-    case ShapeKind::sliver:
-      return "sliver";
-    case ShapeKind::prism:
-      return "prism";
-    case ShapeKind::pyramid:
-      return "pyramid";
-    case ShapeKind::from_file:
-      return "from_file";
-    case ShapeKind::mesh:
-      return "mesh";
-    case ShapeKind::sphere:
-      return "sphere";
-    case ShapeKind::capsule:
-      return "capsule";
-  }
-  return "unknown";
+  return name_in(kShapeKindNames, s);
 }
-
 std::string_view to_string(ContactType c) {
-  switch (c) {
-    case ContactType::none:
-      return "none";
-    case ContactType::face_face:
-      return "face-face";
-    case ContactType::edge_edge:
-      return "edge-edge";
-    case ContactType::vertex_face:
-      return "vertex-face";
-    case ContactType::edge_face:
-      return "edge-face";
-    case ContactType::vertex_edge:
-      return "vertex-edge";
-    case ContactType::vertex_vertex:
-      return "vertex-vertex";
-    case ContactType::parallel_edges:
-      return "parallel-edges";
-  }
-  return "unknown";
+  return name_in(kContactTypeNames, c);
 }
-
 std::string_view to_string(FailureClass f) {
-  switch (f) {
-    case FailureClass::none:
-      return "none";
-    case FailureClass::touching_band:
-      return "touching_band";
-    case FailureClass::step_limit:
-      return "step_limit";
-    case FailureClass::no_progress:
-      return "no_progress";
-    case FailureClass::degenerate_simplex:
-      return "degenerate_simplex";
-    case FailureClass::cycling:
-      return "cycling";
-    case FailureClass::non_finite:
-      return "non_finite";
-    case FailureClass::wrong_boolean:
-      return "wrong_boolean";
-    case FailureClass::distance_error:
-      return "distance_error";
-  }
-  return "unknown";
+  return name_in(kFailureClassNames, f);
 }
 
 FailureClass classify_failure(const AlgorithmRecord& r, const ExactRecord* exact, double band) {
