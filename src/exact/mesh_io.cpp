@@ -34,20 +34,26 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-/// A vertex count a header declares, checked against the file's size (every vertex takes at
-/// least one byte), so that a corrupt count fails here with its line instead of as an
-/// allocation of gigabytes inside the reader.
-void check_vertex_count(const std::string& name, int line, const std::string& text,
-                        std::uintmax_t file_size) {
+/// A count of vertices (`what` = "vertex", "vertices") or of another PLY element a header
+/// declares, checked against the file's size (every item takes at least one byte), so that a
+/// corrupt count fails here with its line instead of as an allocation of gigabytes inside the
+/// reader.
+void check_count(const std::string& name, int line, const std::string& text,
+                 std::uintmax_t file_size, const std::string& what = "vertex",
+                 const std::string& plural = "vertices") {
   unsigned long long count = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), count);
   if (ec != std::errc() || end != text.data() + text.size())
-    throw std::runtime_error(name + ":" + std::to_string(line) + ": vertex count '" + text +
+    throw std::runtime_error(name + ":" + std::to_string(line) + ": " + what + " count '" + text +
                              "' is not a non-negative integer");
   if (count > file_size)
-    throw std::runtime_error(name + ":" + std::to_string(line) + ": declares " + text +
-                             " vertices, more than the file's " + std::to_string(file_size) +
+    throw std::runtime_error(name + ":" + std::to_string(line) + ": declares " + text + " " +
+                             plural + ", more than the file's " + std::to_string(file_size) +
                              " bytes can hold");
+}
+void check_vertex_count(const std::string& name, int line, const std::string& text,
+                        std::uintmax_t file_size) {
+  check_count(name, line, text, file_size);
 }
 
 /// A vertex property line, "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME" (words
@@ -70,7 +76,7 @@ void check_ply_coordinate_type(const std::string& name, int number,
 }
 
 /// The checks of a PLY header that CGAL's reader does not make (it crashed on them): the
-/// vertex count, every property inside an element (CGAL adds a property to the last element
+/// element counts, every property inside an element (CGAL adds a property to the last element
 /// read, with no check that there is one), and x, y, z declared as scalar properties (not
 /// lists).
 void check_ply_header(const std::filesystem::path& file, std::uintmax_t file_size) {
@@ -87,7 +93,11 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t file_siz
     if (w[0] == "element") {
       in_element = true;
       in_vertex = w.size() >= 3 && w[1] == "vertex";
-      if (in_vertex) check_vertex_count(name, number, w[2], file_size);
+      if (in_vertex)
+        check_vertex_count(name, number, w[2], file_size);
+      else if (w.size() >= 3)  // faces and the rest: CGAL reads (and allocates) them too
+        check_count(name, number, w[2], file_size, "element '" + w[1] + "'",
+                    "'" + w[1] + "' elements");
     } else if (w[0] == "property" && !in_element && number > 2) {
       // Lines 1 and 2 are the "ply" and format lines, whatever they hold (CGAL's own checks).
       throw std::runtime_error(name + ":" + std::to_string(number) +

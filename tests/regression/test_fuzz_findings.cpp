@@ -52,6 +52,18 @@ TEST_CASE("PLY with a property before any element: a clear error with the line, 
                   experiment::InputError);
 }
 
+TEST_CASE("PLY declaring 4e9 faces in a 181-byte file: a clear error with the line, not an "
+          "allocation of gigabytes in CGAL's reader",
+          "[regression][hostile][fuzz]") {
+  // As fuzzing found with other elements than vertices (whose count was already checked):
+  // CGAL's reader reserves and reads every element the header declares.
+  const std::string file =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/ply_face_count_4e9_in_181_bytes.ply";
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(file),
+                    Catch::Contains("ply_face_count_4e9_in_181_bytes.ply:7") &&
+                        Catch::Contains("declares 4000000000 'face' elements"));
+}
+
 TEST_CASE("PLY with z declared int32: a clear error with the line, not a call through a null "
           "pointer in CGAL's reader",
           "[regression][hostile][fuzz]") {
