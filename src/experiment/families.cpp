@@ -303,38 +303,100 @@ std::vector<Vec3> points_of(const Polytope& p) {
 
 }  // namespace
 
+namespace {
+
+// The random clouds, n points each. Each draws its coordinates in a fixed order from r: a
+// case is generated from (seed, id) alone, so the order is part of the reference archives.
+
+std::vector<Vec3> sphere_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.push_back(unit_vector(r));
+  return cloud;
+}
+
+std::vector<Vec3> ball_cloud(int n, gsl_rng* r) {
+  // Rejection from the cube [-1, 1)^3 (accepts π/6 ≈ 52%); the test is the same squared
+  // norm Eigen computes, so every accepted point has norm ≤ 1 as Eigen reports it.
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  while (static_cast<int>(cloud.size()) < n) {
+    const Vec3 p(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
+    if (p.squaredNorm() <= 1) cloud.push_back(p);
+  }
+  return cloud;
+}
+
+std::vector<Vec3> cube_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.emplace_back(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
+  return cloud;
+}
+
+std::vector<Vec3> gaussian_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double x = gsl_ran_gaussian(r, 1.0);
+    const double y = gsl_ran_gaussian(r, 1.0);
+    const double z = gsl_ran_gaussian(r, 1.0);
+    cloud.emplace_back(x, y, z);
+  }
+  return cloud;
+}
+
+/// Uniform in the unit disk of the plane z = 0.
+std::vector<Vec3> disk_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double radius = std::sqrt(uniform(r));
+    const double angle = 2 * M_PI * uniform(r);
+    cloud.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+  }
+  return cloud;
+}
+
+/// Uniform on the segment [-1, 1] of the x axis.
+std::vector<Vec3> segment_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
+  return cloud;
+}
+
+/// n points drawn from three distinct points of the unit sphere.
+std::vector<Vec3> duplicate_cloud(int n, gsl_rng* r) {
+  const Vec3 distinct[3] = {unit_vector(r), unit_vector(r), unit_vector(r)};
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
+  return cloud;
+}
+
+}  // namespace
+
 std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, double aspect) {
   if (n < 1) throw std::invalid_argument("generate_shape: vertex count must be at least 1");
   auto* r = static_cast<gsl_rng*>(gsl_rng_handle);
   std::vector<Vec3> cloud;
   switch (kind) {
     case ShapeKind::sphere_points:
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i)
-        cloud.push_back(unit_vector(r));
+      cloud = sphere_cloud(n, r);
       break;
     case ShapeKind::ball_points:
-      // Rejection from the cube [-1, 1)^3 (accepts π/6 ≈ 52%); the test is the same squared
-      // norm Eigen computes, so every accepted point has norm ≤ 1 as Eigen reports it.
-      cloud.reserve(n);
-      while (static_cast<int>(cloud.size()) < n) {
-        const Vec3 p(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
-        if (p.squaredNorm() <= 1) cloud.push_back(p);
-      }
+      cloud = ball_cloud(n, r);
       break;
     case ShapeKind::cube_points:
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i)
-        cloud.emplace_back(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
+      cloud = cube_cloud(n, r);
       break;
     case ShapeKind::gaussian:
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i) {
-        const double x = gsl_ran_gaussian(r, 1.0);
-        const double y = gsl_ran_gaussian(r, 1.0);
-        const double z = gsl_ran_gaussian(r, 1.0);
-        cloud.emplace_back(x, y, z);
-      }
+      cloud = gaussian_cloud(n, r);
       break;
     case ShapeKind::box:
       cloud = points_of(shapes::box());
@@ -349,25 +411,14 @@ std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, do
       cloud = points_of(shapes::uv_sphere(std::max(n, 6)));
       break;
     case ShapeKind::flat_points:
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i) {
-        const double radius = std::sqrt(uniform(r));
-        const double angle = 2 * M_PI * uniform(r);
-        cloud.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
-      }
+      cloud = disk_cloud(n, r);
       break;
     case ShapeKind::collinear_points:
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i)
-        cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
+      cloud = segment_cloud(n, r);
       break;
-    case ShapeKind::duplicate_points: {
-      const Vec3 distinct[3] = {unit_vector(r), unit_vector(r), unit_vector(r)};
-      cloud.reserve(n);
-      for (int i = 0; i < n; ++i)
-        cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
+    case ShapeKind::duplicate_points:
+      cloud = duplicate_cloud(n, r);
       break;
-    }
     case ShapeKind::single_point:
     case ShapeKind::sphere:
       cloud.emplace_back(0.0, 0.0, 0.0);
