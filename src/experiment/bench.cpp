@@ -700,6 +700,13 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress) {
 // ---- output ---------------------------------------------------------------------------------
 
 void print_table(const BenchReport& report, std::ostream& out) {
+  // The name columns widen to the longest name (plus a space), so that long names such as
+  // gjk-johnson-backup keep the columns after them aligned.
+  std::size_t case_width = 28, algorithm_width = 16;
+  for (const BenchRecord& r : report.records) {
+    case_width = std::max(case_width, r.case_name.size() + 1);
+    algorithm_width = std::max(algorithm_width, r.algorithm.size() + (r.via_registry ? 2 : 1));
+  }
   std::string suite;
   for (const BenchRecord& r : report.records) {
     if (r.suite != suite) {
@@ -707,13 +714,14 @@ void print_table(const BenchReport& report, std::ostream& out) {
       const bool scene = suite == "scene";
       out << "\n== " << suite
           << (scene ? "  (time per full pass over all pairs)" : "  (time per query)") << "\n";
-      out << pad("case", 28) << pad("algorithm", 16) << pad("median", 11, true)
+      out << pad("case", case_width) << pad("algorithm", algorithm_width) << pad("median", 11, true)
           << pad("p10", 11, true) << pad("p90", 11, true) << pad("iters", 7, true)
           << pad("supports", 9, true) << pad("x ref", 8, true) << pad("x floor", 8, true)
           << pad("x scan", 8, true) << "  reference\n";
     }
     const double scale = r.suite == "scene" ? static_cast<double>(r.queries) : 1.0;
-    out << pad(r.case_name, 28) << pad(r.algorithm + (r.via_registry ? "*" : ""), 16)
+    out << pad(r.case_name, case_width)
+        << pad(r.algorithm + (r.via_registry ? "*" : ""), algorithm_width)
         << pad(format_ns(r.ns_median * scale), 11, true)
         << pad(format_ns(r.ns_p10 * scale), 11, true) << pad(format_ns(r.ns_p90 * scale), 11, true)
         << pad(fixed(r.iterations_mean, 1), 7, true) << pad(fixed(r.support_calls_mean, 1), 9, true)
