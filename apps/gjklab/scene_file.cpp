@@ -1,12 +1,12 @@
 #include "gjklab/scene_file.hpp"
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <random>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
@@ -44,7 +44,8 @@ class Table {
     for (auto&& [k, v] : t_) {
       if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
       std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      for (auto a : allowed)
+        list += (list.empty() ? "" : ", ") + std::string(a);
       throw ConfigError(file_, line_of(k.source()), key(k.str()), "unknown key; valid: " + list);
     }
   }
@@ -127,10 +128,10 @@ class Table {
     const toml::node* n = t_.get(k);
     if (!n) return out;
     const toml::array* a = n->as_array();
-    if (!a || !a->is_array_of_tables()) fail(k, "expected an array of tables [[" + std::string(k) + "]]");
+    if (!a || !a->is_array_of_tables())
+      fail(k, "expected an array of tables [[" + std::string(k) + "]]");
     for (std::size_t i = 0; i < a->size(); ++i)
-      out.emplace_back(file_, *a->get(i)->as_table(),
-                       key(k) + "[" + std::to_string(i) + "]");
+      out.emplace_back(file_, *a->get(i)->as_table(), key(k) + "[" + std::to_string(i) + "]");
     return out;
   }
   const toml::table& raw() const { return t_; }
@@ -172,7 +173,8 @@ Vec3 size_of(const Table& t) {
 
 std::vector<Vec3> scaled(const Polytope& p, const Vec3& s) {
   std::vector<Vec3> out;
-  for (const Vec3& v : p.vertices()) out.push_back(v.cwiseProduct(s));
+  for (const Vec3& v : p.vertices())
+    out.push_back(v.cwiseProduct(s));
   return out;
 }
 
@@ -195,10 +197,10 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
   const Vec3 s = size_of(t);
   if (shape == "box") return scaled(shapes::box(), s);
   if (shape == "hull") return hull_points(t);
-  const auto v = static_cast<int>(t.integer("vertices", shape == "cone" ? shapes::kDefaultConeVertices
-                                                        : shape == "cylinder"
-                                                            ? shapes::kDefaultCylinderVertices
-                                                            : shapes::kDefaultSphereVertices,
+  const auto v = static_cast<int>(t.integer("vertices",
+                                            shape == "cone"       ? shapes::kDefaultConeVertices
+                                            : shape == "cylinder" ? shapes::kDefaultCylinderVertices
+                                                                  : shapes::kDefaultSphereVertices,
                                             4, 100000));
   try {
     if (shape == "cone") return scaled(shapes::cone(v), s);
@@ -217,7 +219,8 @@ class ShapeCache {
                                                 std::vector<Vec3> cloud) {
     std::ostringstream k;
     k.precision(17);
-    for (const Vec3& v : cloud) k << v.x() << ' ' << v.y() << ' ' << v.z() << ';';
+    for (const Vec3& v : cloud)
+      k << v.x() << ' ' << v.y() << ' ' << v.z() << ';';
     auto& slot = cache_[k.str()];
     if (!slot) {
       try {
@@ -239,7 +242,8 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
                 "slop", "baumgarte", "restitution_threshold"});
   s.gravity = p.vec3("gravity", s.gravity);
   s.dt = p.number("dt", s.dt, 1e-9, 10);
-  s.solver_iterations = static_cast<int>(p.integer("solver_iterations", s.solver_iterations, 1, 1000));
+  s.solver_iterations =
+      static_cast<int>(p.integer("solver_iterations", s.solver_iterations, 1, 1000));
   s.position_iterations =
       static_cast<int>(p.integer("position_iterations", s.position_iterations, 0, 1000));
   s.contact_margin = p.number("contact_margin", s.contact_margin, 0, 1e12);
@@ -266,7 +270,8 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.algorithm = *a;
   s.warm_start = n.boolean("warm_start", true);
   s.measure_cold = n.boolean("measure_cold", false);
-  s.gjk.max_iterations = static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
+  s.gjk.max_iterations =
+      static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
 }
 
 /// A funnel of `segments` static slabs: each a convex hull of 8 points between the cone of
@@ -285,7 +290,8 @@ std::vector<std::vector<Vec3>> funnel_panels(const Table& t) {
       const double a = 2 * M_PI * (k + e) / n;
       const Vec3 dir(std::cos(a), std::sin(a), 0);
       for (double r : {r0, r1})
-        for (double off : {0.0, th}) pts.push_back(dir * (r + off) + Vec3(0, 0, r == r0 ? 0 : h));
+        for (double off : {0.0, th})
+          pts.push_back(dir * (r + off) + Vec3(0, 0, r == r0 ? 0 : h));
     }
     out.push_back(std::move(pts));
   }
@@ -357,7 +363,8 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
       const auto h = t.numbers_of(*a->get(1)->as_array(), "region", 3);
       lo = Vec3(l[0], l[1], l[2]);
       hi = Vec3(h[0], h[1], h[2]);
-      if (!(lo.array() <= hi.array()).all()) t.fail("region", "the lower corner must not exceed the upper");
+      if (!(lo.array() <= hi.array()).all())
+        t.fail("region", "the lower corner must not exceed the upper");
     } else if (placement != "stack" && placement != "grid") {
       t.fail("placement", "unknown placement '" + placement + "'; valid: stack, grid, random");
     }
@@ -394,7 +401,8 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
       sizes.push_back(cs->size);
     }
   }
-  if (sizes.empty()) throw ConfigError(root.file(), root.line(), "bodies",
+  if (sizes.empty())
+    throw ConfigError(root.file(), root.line(), "bodies",
                       "a scene needs at least one [[bodies]] group");
   std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
   s.body_size = sizes[sizes.size() / 2];
@@ -407,7 +415,8 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
   try {
     doc = toml::parse(std::string_view(text), std::string_view(source));
   } catch (const toml::parse_error& e) {
-    throw ConfigError(source, line_of(e.source()), "", "TOML syntax error: " + std::string(e.description()));
+    throw ConfigError(source, line_of(e.source()), "",
+                      "TOML syntax error: " + std::string(e.description()));
   }
   const Table root(source, doc, "");
   root.allow_only({"scene", "physics", "broad_phase", "narrow_phase", "static", "bodies"});

@@ -31,8 +31,8 @@ struct SimulationError : std::runtime_error {
 struct FrameRows {
   std::vector<double> time, kinetic_energy, potential_energy, max_penetration, iterations_mean,
       iterations_cold_mean;
-  std::vector<std::int64_t> contacts, candidate_pairs, narrow_queries, epa_queries,
-      failed_queries, broadphase_ns, narrowphase_ns, solver_ns;
+  std::vector<std::int64_t> contacts, candidate_pairs, narrow_queries, epa_queries, failed_queries,
+      broadphase_ns, narrowphase_ns, solver_ns;
   // With compare_broad_phases: the pair search alone, timed on the same boxes.
   std::vector<std::int64_t> all_pairs_ns, grid_ns, sap_ns;
   std::vector<std::uint8_t> broad_phases_agree;
@@ -111,7 +111,8 @@ void write_column(const H5& h, hid_t group, const std::string& name, const std::
 void write_strings(const H5& h, hid_t group, const std::string& name,
                    const std::vector<std::string>& v) {
   std::vector<const char*> ptrs;
-  for (const auto& s : v) ptrs.push_back(s.c_str());
+  for (const auto& s : v)
+    ptrs.push_back(s.c_str());
   const hsize_t dims[1] = {v.size()};
   Closer type{h.check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose};
   H5Tset_size(type.id, H5T_VARIABLE);
@@ -140,10 +141,10 @@ void string_attribute(const H5& h, hid_t obj, const std::string& name, const std
 template <class T>
 void number_attribute(const H5& h, hid_t obj, const std::string& name, T value) {
   Closer space{h.check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose};
-  Closer a{h.check(H5Acreate2(obj, name.c_str(), native_type<T>(), space.id, H5P_DEFAULT,
-                              H5P_DEFAULT),
-                   "cannot create attribute " + name),
-           H5Aclose};
+  Closer a{
+      h.check(H5Acreate2(obj, name.c_str(), native_type<T>(), space.id, H5P_DEFAULT, H5P_DEFAULT),
+              "cannot create attribute " + name),
+      H5Aclose};
   if (H5Awrite(a.id, native_type<T>(), &value) < 0) h.fail("cannot write attribute " + name);
 }
 
@@ -167,10 +168,12 @@ void record_poses(const scene::World& w, std::int64_t frame, PoseRows& r) {
     if (b.is_static()) continue;
     r.frame.push_back(frame);
     r.body.push_back(i);
-    for (int k = 0; k < 3; ++k) r.position.push_back(b.pose.translation[k]);
-    r.orientation.insert(r.orientation.end(),
-                         {b.orientation.w(), b.orientation.x(), b.orientation.y(), b.orientation.z()});
-    for (int k = 0; k < 3; ++k) r.velocity.push_back(b.velocity[k]);
+    for (int k = 0; k < 3; ++k)
+      r.position.push_back(b.pose.translation[k]);
+    r.orientation.insert(r.orientation.end(), {b.orientation.w(), b.orientation.x(),
+                                               b.orientation.y(), b.orientation.z()});
+    for (int k = 0; k < 3; ++k)
+      r.velocity.push_back(b.velocity[k]);
     r.touching.push_back(b.touching ? 1 : 0);
   }
 }
@@ -180,8 +183,10 @@ void record_contacts(const scene::World& w, std::int64_t frame, ContactRows& r) 
     r.frame.push_back(frame);
     r.a.push_back(c.a);
     r.b.push_back(c.b);
-    for (int k = 0; k < 3; ++k) r.point.push_back(c.point[k]);
-    for (int k = 0; k < 3; ++k) r.normal.push_back(c.normal[k]);
+    for (int k = 0; k < 3; ++k)
+      r.point.push_back(c.point[k]);
+    for (int k = 0; k < 3; ++k)
+      r.normal.push_back(c.normal[k]);
     r.depth.push_back(c.depth);
     r.normal_impulse.push_back(c.normal_impulse);
   }
@@ -205,7 +210,8 @@ struct BroadPhaseComparison {
   std::int64_t time(scene::BroadPhase& b, std::vector<scene::BodyPair>& out) {
     const auto t0 = std::chrono::steady_clock::now();
     b.find_pairs(boxes, out);
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
+                                                                t0)
         .count();
   }
 };
@@ -360,8 +366,9 @@ double mean(const std::vector<double>& v, const std::vector<std::int64_t>& weigh
 
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "simulate", "step a scene of rigid bodies (broad phase, warm-started GJK, contacts) and "
-                  "write its HDF5 archive");
+      "simulate",
+      "step a scene of rigid bodies (broad phase, warm-started GJK, contacts) and "
+      "write its HDF5 archive");
   cmd->add_option("scene", args.scene, "scene file (TOML)")->required();
   cmd->add_option("--out", args.output, "archive path (default: results/<scene name>.h5)");
   cmd->add_option("--frames", args.frames, "frames to simulate (default: the file's `frames`)")
@@ -385,7 +392,8 @@ int run_simulate_command(const SimulateArgs& args, std::ostream& out, std::ostre
     write_archive(path, s, args.scene, r, done, finite);
     const FrameRows& f = r.frames;
     double max_pen = 0;
-    for (double p : f.max_penetration) max_pen = std::max(max_pen, p);
+    for (double p : f.max_penetration)
+      max_pen = std::max(max_pen, p);
     out << "scene " << s.name << ": " << s.world->bodies().size() << " bodies, " << done
         << " frames (" << f.time.back() << " s)\n"
         << "  max penetration / body size: " << max_pen << "\n"

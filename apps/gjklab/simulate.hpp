@@ -14,8 +14,8 @@ namespace gjklab::cli {
 
 struct SimulateArgs {
   std::string scene;
-  std::string output;        ///< default: results/<scene name>.h5
-  std::int64_t frames = 0;   ///< 0: the file's
+  std::string output;       ///< default: results/<scene name>.h5
+  std::int64_t frames = 0;  ///< 0: the file's
   bool force = false;
 };
 

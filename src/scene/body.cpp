@@ -31,7 +31,8 @@ MassProperties mass_properties(std::span<const Vec3> vertices,
   // Apex at the vertex mean keeps the tetrahedra's coordinates small (less cancellation than
   // an apex at a far-away origin); the moments are shifted back at the end.
   Vec3 apex = Vec3::Zero();
-  for (const Vec3& v : vertices) apex += v;
+  for (const Vec3& v : vertices)
+    apex += v;
   apex /= static_cast<double>(vertices.size());
   double volume = 0;
   Vec3 first_moment = Vec3::Zero();
@@ -73,14 +74,9 @@ std::shared_ptr<const ConvexShape> make_convex_shape(std::vector<Vec3> cloud) {
     v -= mp.centroid;
     radius = std::max(radius, v.norm());
   }
-  auto shape = std::make_shared<ConvexShape>(ConvexShape{Polytope(std::move(centred)),
-                                                         std::move(hull.faces),
-                                                         std::move(hull.face_normals),
-                                                         mp.volume,
-                                                         mp.unit_inertia,
-                                                         -mp.centroid,
-                                                         radius,
-                                                         0});
+  auto shape = std::make_shared<ConvexShape>(
+      ConvexShape{Polytope(std::move(centred)), std::move(hull.faces), std::move(hull.face_normals),
+                  mp.volume, mp.unit_inertia, -mp.centroid, radius, 0});
   shape->size = shape->polytope.bounding_box_diagonal();
   return shape;
 }

@@ -35,8 +35,8 @@ constexpr std::string_view to_string(ScalarPrecision p) {
 }
 
 inline std::optional<ScalarPrecision> precision_from_string(std::string_view name) {
-  for (ScalarPrecision p : {ScalarPrecision::single_float, ScalarPrecision::double_float,
-                            ScalarPrecision::long_double})
+  for (ScalarPrecision p :
+       {ScalarPrecision::single_float, ScalarPrecision::double_float, ScalarPrecision::long_double})
     if (to_string(p) == name) return p;
   return std::nullopt;
 }

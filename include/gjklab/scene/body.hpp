@@ -64,11 +64,11 @@ std::shared_ptr<const ConvexShape> make_convex_shape(std::vector<Vec3> cloud);
 /// A rigid body. Static bodies (inverse mass 0) never move and collide with dynamic ones only.
 struct RigidBody {
   std::shared_ptr<const ConvexShape> shape;
-  Pose pose;                        ///< body frame → world frame
-  Quat orientation = Quat::Identity();  ///< the rotation of `pose`, kept for integration
-  Vec3 velocity = Vec3::Zero();     ///< of the centre of mass, world frame (length/s)
+  Pose pose;                             ///< body frame → world frame
+  Quat orientation = Quat::Identity();   ///< the rotation of `pose`, kept for integration
+  Vec3 velocity = Vec3::Zero();          ///< of the centre of mass, world frame (length/s)
   Vec3 angular_velocity = Vec3::Zero();  ///< world frame (rad/s)
-  double mass = 0;                  ///< 0 for static bodies
+  double mass = 0;                       ///< 0 for static bodies
   double inverse_mass = 0;
   Mat3 inverse_inertia_body = Mat3::Zero();  ///< body frame; zero for static bodies
   double friction = 0.5;     ///< Coulomb coefficient (the pair uses the geometric mean)

@@ -28,9 +28,9 @@ struct Aabb {
 using BodyPair = std::pair<std::uint32_t, std::uint32_t>;
 
 enum class BroadPhaseKind : std::uint8_t {
-  all_pairs,       ///< every pair tested: the reference, O(n²)
-  grid,            ///< uniform 3D grid of hashed cells
-  sweep_and_prune, ///< sort on the lower x bound, sweep
+  all_pairs,        ///< every pair tested: the reference, O(n²)
+  grid,             ///< uniform 3D grid of hashed cells
+  sweep_and_prune,  ///< sort on the lower x bound, sweep
 };
 
 constexpr std::string_view to_string(BroadPhaseKind k) {
@@ -64,10 +64,10 @@ class SweepAndPrune {
 
 /// Uniform grid of cubic cells of side `cell_size` (length units): a dense array over the
 /// occupied region (counting sort, linear time), or hashed cells when the bodies are scattered
-/// over a region much larger than they fill. A box goes into every cell it touches; a pair is reported by the one cell that
-/// holds the lower corner of the intersection of the two boxes' cell ranges, so each pair once
-/// without a set. Boxes that would touch more than kMaxCellsPerBox cells (a ground plane) are
-/// kept aside and tested against every box instead.
+/// over a region much larger than they fill. A box goes into every cell it touches; a pair is
+/// reported by the one cell that holds the lower corner of the intersection of the two boxes' cell
+/// ranges, so each pair once without a set. Boxes that would touch more than kMaxCellsPerBox cells
+/// (a ground plane) are kept aside and tested against every box instead.
 class UniformGrid {
  public:
   static constexpr std::int64_t kMaxCellsPerBox = 64;
@@ -81,8 +81,7 @@ class UniformGrid {
   struct Range {
     std::int64_t lo[3], hi[3];
   };
-  static bool owns(const Range& a, const Range& b, std::int64_t x, std::int64_t y,
-                   std::int64_t z);
+  static bool owns(const Range& a, const Range& b, std::int64_t x, std::int64_t y, std::int64_t z);
   void dense_pairs(std::span<const Aabb> boxes, const std::int64_t lo[3], const std::int64_t hi[3],
                    std::vector<BodyPair>& out);
   void hashed_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);

@@ -8,10 +8,11 @@
 //  2. Narrow phase: per candidate pair, GJK distance between the two hulls in world
 //     coordinates, warm-started from the pair's final simplex of the previous step (the simplex
 //     stores vertex indices, re-evaluated on the moved hulls). Pairs closer than the margin
-//     plus the distance they can close in the step are in contact (speculatively when apart); intersecting pairs go on to EPA for the depth and normal. A contact
-//     manifold of up to four points is built by clipping the incident face against the
-//     reference face (both chosen by the normal); when neither face is aligned with the normal
-//     (edge or vertex contact) the single GJK/EPA point is used.
+//     plus the distance they can close in the step are in contact (speculatively when apart);
+//     intersecting pairs go on to EPA for the depth and normal. A contact manifold of up to four
+//     points is built by clipping the incident face against the reference face (both chosen by the
+//     normal); when neither face is aligned with the normal (edge or vertex contact) the single
+//     GJK/EPA point is used.
 //  3. Velocities: v += g dt; then `solver_iterations` passes of sequential impulses on every
 //     contact point (non-penetration with restitution, two-axis Coulomb friction), starting
 //     from the impulses of the matching points of the previous step.
@@ -83,10 +84,10 @@ struct WorldSettings {
 /// One contact point between bodies a and b.
 struct Contact {
   std::uint32_t a = 0, b = 0;
-  Vec3 point = Vec3::Zero();   ///< world, midway between the two surfaces
-  Vec3 normal = Vec3::UnitZ(); ///< unit, from a towards b
-  double depth = 0;            ///< > 0 penetrating, < 0 separated by −depth (speculative)
-  double normal_impulse = 0;   ///< accumulated this step (mass·length/s)
+  Vec3 point = Vec3::Zero();    ///< world, midway between the two surfaces
+  Vec3 normal = Vec3::UnitZ();  ///< unit, from a towards b
+  double depth = 0;             ///< > 0 penetrating, < 0 separated by −depth (speculative)
+  double normal_impulse = 0;    ///< accumulated this step (mass·length/s)
   double tangent_impulse[2] = {0, 0};
 };
 
