@@ -136,6 +136,23 @@ TEST_CASE("FCL on cubes with a 1e154 vertex: NaN closest points are a numerical 
   }
 }
 
+TEST_CASE("FCL on vertices at 5.9e68 beside features of size 1: refused as invalid input, not a "
+          "query that never returns",
+          "[regression][fuzz]") {
+  // fcl-libccd's collide path runs libccd's MPR, whose loops take no iteration bound: on this
+  // pair (found by fuzzing the queries) `gjklab query` with the default algorithms hung.
+  const experiment::PointCase c = fuzz_case("fcl_libccd_mpr_hang_vertices_at_5.9e68.jsonl");
+  const Polytope a(c.a), b(c.b);
+  experiment::AlgorithmOptions options;
+  options.oracle.depth = true;
+  for (const char* name : {"fcl-libccd", "fcl-indep"}) {
+    CAPTURE(name);
+    const experiment::Outcome o = experiment::run_algorithm(*experiment::find_algorithm(name), a,
+                                                            b, SweptRadii{}, options);
+    CHECK(o.termination == Termination::invalid_input);
+  }
+}
+
 TEST_CASE("FCL on a vertex at 1e300 against a point at -7e174: refused as invalid input, not an "
           "assertion that aborts the program",
           "[regression][fuzz]") {

@@ -24,9 +24,9 @@
 // nor support calls (both 0) nor why it stopped: termination is `converged`, except for
 // fcl-indep when both queries fail to answer (its GJK stops at gjk_max_iterations or its EPA
 // fails, FCL does not say which), reported as `step_limit`; any non-finite number in the answer
-// makes it `numerical_failure`. A pair with a coordinate beyond 1e100 in magnitude is not given
-// to FCL (`invalid_input`): its triple products overflow there and an assertion inside FCL
-// aborted the program.
+// makes it `numerical_failure`. A pair with a coordinate beyond 1e30 in magnitude is not given
+// to FCL (`invalid_input`): its triple products overflow near 1e102 and an assertion inside
+// FCL aborted the program there, and its libccd MPR never returned on coordinates of 1e68.
 #pragma once
 
 #include <memory>
