@@ -54,7 +54,8 @@ void SweepAndPrune::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair
   (sum2 - sum.cwiseProduct(sum) / std::max<double>(n, 1)).maxCoeff(&axis);
   if (order_.size() != n || axis != axis_) {
     order_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) order_[i] = i;
+    for (std::uint32_t i = 0; i < n; ++i)
+      order_[i] = i;
     axis_ = axis;
   }
   // Insertion sort on the lower bound from last frame's order (nearly sorted: about n steps).
@@ -70,7 +71,8 @@ void SweepAndPrune::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair
   }
   // The sweep reads the boxes in sorted order from a contiguous copy (no gather per test).
   sorted_.resize(n);
-  for (std::uint32_t k = 0; k < n; ++k) sorted_[k] = boxes[order_[k]];
+  for (std::uint32_t k = 0; k < n; ++k)
+    sorted_[k] = boxes[order_[k]];
   for (std::uint32_t k = 0; k < n; ++k) {
     const Aabb& a = sorted_[k];
     const double end = a.upper[axis];
@@ -127,7 +129,8 @@ CellRange cell_range(const Aabb& b, double inv_cell) {
 double auto_cell_size(std::span<const Aabb> boxes) {
   std::vector<double> sides;
   sides.reserve(boxes.size());
-  for (const Aabb& b : boxes) sides.push_back((b.upper - b.lower).maxCoeff());
+  for (const Aabb& b : boxes)
+    sides.push_back((b.upper - b.lower).maxCoeff());
   std::nth_element(sides.begin(), sides.begin() + sides.size() / 2, sides.end());
   const double median = sides[sides.size() / 2];
   // About the median box's side: most boxes then touch 1 to 8 cells and a cell holds few
@@ -162,8 +165,8 @@ void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>&
     }
   }
   if (!small_.empty()) {
-    const double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) *
-                         double(hi[2] - lo[2] + 1);
+    const double cells =
+        double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
     // A dense array of cells when the occupied region is not much larger than the bodies
     // need (the usual case); hashed cells, sorted, for scattered worlds.
     if (cells <= 8.0 * double(small_.size()) + 4096)
@@ -200,13 +203,15 @@ void UniformGrid::dense_pairs(std::span<const Aabb> boxes, const std::int64_t lo
   auto for_cells = [&](const Range& r, auto&& f) {
     for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z)
       for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x) f(x, y, z);
+        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
+          f(x, y, z);
   };
   for (std::uint32_t i : small_)
     for_cells(ranges_[i], [&](std::int64_t x, std::int64_t y, std::int64_t z) {
       ++start_[cell_index(x, y, z) + 1];
     });
-  for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+  for (std::size_t c = 1; c < start_.size(); ++c)
+    start_[c] += start_[c - 1];
   members_.resize(start_.back());
   fill_ = start_;
   for (std::uint32_t i : small_)
@@ -240,7 +245,8 @@ void UniformGrid::hashed_pairs(std::span<const Aabb> boxes, std::vector<BodyPair
   });
   for (std::size_t s = 0; s < entries_.size();) {
     std::size_t e = s;
-    while (e < entries_.size() && entries_[e].key == entries_[s].key) ++e;
+    while (e < entries_.size() && entries_[e].key == entries_[s].key)
+      ++e;
     for (std::size_t p = s; p < e; ++p) {
       for (std::size_t q = p + 1; q < e; ++q) {
         const std::uint32_t i = entries_[p].body, j = entries_[q].body;

@@ -114,10 +114,9 @@ std::size_t best_face(const ConvexShape& shape, const Mat3& rotation, const Vec3
 /// A manifold by clipping the incident face against the reference face; the normal it
 /// returns through `normal` is the reference face's (oriented from a to b). Empty when neither
 /// face is aligned with the normal or nothing survives the clipping.
-std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& wa,
-                                         const Mat3& ra, const ConvexShape& sb,
-                                         const Polytope& wb, const Mat3& rb, Vec3& normal,
-                                         double margin) {
+std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& wa, const Mat3& ra,
+                                         const ConvexShape& sb, const Polytope& wb, const Mat3& rb,
+                                         Vec3& normal, double margin) {
   double align_a = 0, align_b = 0;
   const std::size_t fa = best_face(sa, ra, normal, align_a);
   const std::size_t fb = best_face(sb, rb, -normal, align_b);
@@ -133,7 +132,8 @@ std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& 
   const auto& inc_loop = is.faces[a_is_reference ? fb : fa];
   const Vec3 nr = rr * rs.face_normals[a_is_reference ? fa : fb];  // out of the reference body
   std::vector<Vec3> poly;
-  for (int v : inc_loop) poly.push_back(iw.vertices()[v]);
+  for (int v : inc_loop)
+    poly.push_back(iw.vertices()[v]);
   const std::size_t m = ref_loop.size();
   for (std::size_t k = 0; k < m && !poly.empty(); ++k) {
     const Vec3& p = rw.vertices()[ref_loop[k]];
@@ -246,9 +246,9 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
                     double& iterations, double& iterations_cold) {
   const Polytope& pa = world_hull(ia);
   const Polytope& pb = world_hull(ib);
-  const std::span<const SimplexVertex> warm =
-      settings_.warm_start ? std::span<const SimplexVertex>(cache.simplex)
-                           : std::span<const SimplexVertex>();
+  const std::span<const SimplexVertex> warm = settings_.warm_start
+                                                  ? std::span<const SimplexVertex>(cache.simplex)
+                                                  : std::span<const SimplexVertex>();
   const DistanceResult r = run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
   ++stats.narrow_queries;
   iterations += r.iterations;
@@ -278,7 +278,8 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
     const Vec3 ab = r.witness_b - r.witness_a;
     const double n = ab.norm();
     // A zero distance that GJK did not call contact: fall back to the centres' direction.
-    normal = n > 0 ? Vec3(ab / n) : Vec3(bodies_[ib].pose.translation - bodies_[ia].pose.translation);
+    normal =
+        n > 0 ? Vec3(ab / n) : Vec3(bodies_[ib].pose.translation - bodies_[ia].pose.translation);
     single = {0.5 * (r.witness_a + r.witness_b), -r.distance};
   }
   if (!normal.allFinite() || !(normal.norm() > 0) || !single.point.allFinite() ||
@@ -359,11 +360,11 @@ namespace {
 
 /// Per-contact constants of one step's solve.
 struct ContactRow {
-  Vec3 ra, rb;     ///< arms from the centres of mass (world)
-  Vec3 t[2];       ///< tangents
+  Vec3 ra, rb;  ///< arms from the centres of mass (world)
+  Vec3 t[2];    ///< tangents
   double normal_mass;
   double tangent_mass[2];
-  double target;   ///< normal relative velocity the impulse aims for (≥ this)
+  double target;  ///< normal relative velocity the impulse aims for (≥ this)
   double friction;
 };
 
@@ -381,7 +382,8 @@ void World::solve_velocities() {
   const std::size_t n = contacts_.size();
   std::vector<ContactRow> rows(n);
   std::vector<Mat3> inv_inertia(bodies_.size());
-  for (std::size_t i = 0; i < bodies_.size(); ++i) inv_inertia[i] = bodies_[i].inverse_inertia_world();
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    inv_inertia[i] = bodies_[i].inverse_inertia_world();
   const double dt = settings_.dt;
   for (std::size_t k = 0; k < n; ++k) {
     Contact& c = contacts_[k];
@@ -453,7 +455,8 @@ void World::correct_positions(std::vector<Vec3>& dv, std::vector<Vec3>& dw) {
   const std::size_t n = contacts_.size();
   std::vector<double> lambda(n, 0.0);
   std::vector<Mat3> inv_inertia(bodies_.size());
-  for (std::size_t i = 0; i < bodies_.size(); ++i) inv_inertia[i] = bodies_[i].inverse_inertia_world();
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    inv_inertia[i] = bodies_[i].inverse_inertia_world();
   for (int pass = 0; pass < settings_.position_iterations; ++pass) {
     for (std::size_t k = 0; k < n; ++k) {
       const Contact& c = contacts_[k];
@@ -465,13 +468,12 @@ void World::correct_positions(std::vector<Vec3>& dv, std::vector<Vec3>& dw) {
       const Mat3& ib = inv_inertia[c.b];
       // Pseudo-velocity (length/s) that removes the fraction `baumgarte` of the excess depth.
       const double target = settings_.baumgarte * (c.depth - settings_.slop) / settings_.dt;
-      const double vn =
-          (dv[c.b] + dw[c.b].cross(rb) - dv[c.a] - dw[c.a].cross(ra)).dot(c.normal);
+      const double vn = (dv[c.b] + dw[c.b].cross(rb) - dv[c.a] - dw[c.a].cross(ra)).dot(c.normal);
       const double mass = 1.0 / inverse_effective_mass(a, b, ia, ib, ra, rb, c.normal);
       const double old = lambda[k];
       lambda[k] = std::max(0.0, old + (target - vn) * mass);
-      apply_impulse(a, b, ia, ib, ra, rb, (lambda[k] - old) * c.normal, dv[c.a], dw[c.a],
-                    dv[c.b], dw[c.b]);
+      apply_impulse(a, b, ia, ib, ra, rb, (lambda[k] - old) * c.normal, dv[c.a], dw[c.a], dv[c.b],
+                    dw[c.b]);
     }
   }
 }
@@ -524,7 +526,8 @@ StepStats World::step() {
   integrate(dv, dw);
   stats.solver_ns = nanoseconds_since(t0);
 
-  for (RigidBody& b : bodies_) b.touching = false;
+  for (RigidBody& b : bodies_)
+    b.touching = false;
   for (const Contact& c : contacts_)
     if (c.depth >= 0) bodies_[c.a].touching = bodies_[c.b].touching = true;
   time_ += settings_.dt;
@@ -534,7 +537,8 @@ StepStats World::step() {
 
 double World::max_penetration() const {
   double m = 0;
-  for (const Contact& c : contacts_) m = std::max(m, c.depth);
+  for (const Contact& c : contacts_)
+    m = std::max(m, c.depth);
   return m;
 }
 

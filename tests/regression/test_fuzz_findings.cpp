@@ -40,9 +40,10 @@ bool converged_answer_is_finite(const experiment::Outcome& o) {
 
 }  // namespace
 
-TEST_CASE("PLY with a property before any element: a clear error with the line, not an access "
-          "before the start of CGAL's element list",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "PLY with a property before any element: a clear error with the line, not an access "
+    "before the start of CGAL's element list",
+    "[regression][hostile][fuzz]") {
   // CGAL's PLY reader adds each property to its last element, m_elements.back(), without
   // checking that there is one (undefined behaviour; UBSan: offset applied to a null pointer).
   CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_property_before_element.ply")),
@@ -52,9 +53,10 @@ TEST_CASE("PLY with a property before any element: a clear error with the line, 
                   experiment::InputError);
 }
 
-TEST_CASE("PLY declaring 4e9 faces in a 181-byte file: a clear error with the line, not an "
-          "allocation of gigabytes in CGAL's reader",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "PLY declaring 4e9 faces in a 181-byte file: a clear error with the line, not an "
+    "allocation of gigabytes in CGAL's reader",
+    "[regression][hostile][fuzz]") {
   // As fuzzing found with other elements than vertices (whose count was already checked):
   // CGAL's reader reserves and reads every element the header declares.
   const std::string file =
@@ -64,28 +66,31 @@ TEST_CASE("PLY declaring 4e9 faces in a 181-byte file: a clear error with the li
                         Catch::Contains("declares 4000000000 'face' elements"));
 }
 
-TEST_CASE("PLY with z declared int32: a clear error with the line, not a call through a null "
-          "pointer in CGAL's reader",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "PLY with z declared int32: a clear error with the line, not a call through a null "
+    "pointer in CGAL's reader",
+    "[regression][hostile][fuzz]") {
   // CGAL's reader takes every coordinate property to be float or double (dynamic_cast, with
   // only a disabled assertion behind it), so an integer z was a null pointer dereference.
   CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_z_as_int32.ply")),
                     Catch::Contains("ply_z_as_int32.ply:6") && Catch::Contains("int32"));
 }
 
-TEST_CASE("PLY with y declared uint8 and more words on its line: the type of the third word is "
-          "checked, as CGAL reads it",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "PLY with y declared uint8 and more words on its line: the type of the third word is "
+    "checked, as CGAL reads it",
+    "[regression][hostile][fuzz]") {
   // "property uint8 y<VT>property float z": CGAL reads the type and the name and ignores the
   // rest; the first check took the line's last word as the name and let the uint8 y through.
-  CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_y_as_uint8_then_more_words.ply")),
-                    Catch::Contains("ply_y_as_uint8_then_more_words.ply:5") &&
-                        Catch::Contains("uint8"));
+  CHECK_THROWS_WITH(
+      exact::read_mesh_vertices(hostile("ply_y_as_uint8_then_more_words.ply")),
+      Catch::Contains("ply_y_as_uint8_then_more_words.ply:5") && Catch::Contains("uint8"));
 }
 
-TEST_CASE("PLY with a face list count of -1 (signed char): a clear error, not std::length_error "
-          "out of the program",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "PLY with a face list count of -1 (signed char): a clear error, not std::length_error "
+    "out of the program",
+    "[regression][hostile][fuzz]") {
   // CGAL's reader resizes the list to the count, here 2^64 - 1, and lets std::length_error
   // through; `gjklab query` catches InputError only.
   CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_face_list_count_minus_1.ply")),
@@ -95,9 +100,10 @@ TEST_CASE("PLY with a face list count of -1 (signed char): a clear error, not st
                   experiment::InputError);
 }
 
-TEST_CASE("archive with one byte of /cases/shape_a's enum type flipped: an error, and the "
-          "program survives libhdf5's out-of-bounds read",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "archive with one byte of /cases/shape_a's enum type flipped: an error, and the "
+    "program survives libhdf5's out-of-bounds read",
+    "[regression][hostile][fuzz]") {
   // Byte 9430 of a small traced archive, 0 -> 0x43: opening the dataset makes libhdf5's
   // H5T_copy read 68 MB from a 19-byte buffer (an upstream bug), which segfaults. The isolated
   // reader meets it in its child and reports the file as corrupt.
@@ -106,23 +112,25 @@ TEST_CASE("archive with one byte of /cases/shape_a's enum type flipped: an error
                   experiment::ArchiveError);
 }
 
-TEST_CASE("archive whose experiment_name attribute points into a corrupt global heap: an error "
-          "after the time limit, not a read that never ends",
-          "[regression][hostile][fuzz]") {
+TEST_CASE(
+    "archive whose experiment_name attribute points into a corrupt global heap: an error "
+    "after the time limit, not a read that never ends",
+    "[regression][hostile][fuzz]") {
   // Found by fuzzing the archive reader: libhdf5 loops forever in H5HG_read on this file while
   // reading the root attribute experiment_name. The isolated reader's child is killed when the
   // time limit (GJKLAB_ARCHIVE_READ_SECONDS, here 2 s) passes, and the file reported corrupt.
   ::setenv("GJKLAB_ARCHIVE_READ_SECONDS", "2", 1);
-  CHECK_THROWS_WITH(experiment::read_archive_isolated(
-                        hostile("archive_experiment_name_global_heap_hang.h5")),
-                    Catch::Contains("did not finish within 2 s"));
+  CHECK_THROWS_WITH(
+      experiment::read_archive_isolated(hostile("archive_experiment_name_global_heap_hang.h5")),
+      Catch::Contains("did not finish within 2 s"));
   ::unsetenv("GJKLAB_ARCHIVE_READ_SECONDS");
 }
 
 #ifdef GJKLAB_HAVE_FCL
-TEST_CASE("FCL on cubes with a 1e154 vertex: NaN closest points are a numerical failure, not "
-          "converged",
-          "[regression][fuzz]") {
+TEST_CASE(
+    "FCL on cubes with a 1e154 vertex: NaN closest points are a numerical failure, not "
+    "converged",
+    "[regression][fuzz]") {
   // fcl-libccd's distance query returns a finite distance (177.76) with NaN closest points here
   // (a vertex at 1e154, whose square overflows); the adapter checked only the distance and
   // reported the NaN witnesses as converged.
@@ -136,9 +144,10 @@ TEST_CASE("FCL on cubes with a 1e154 vertex: NaN closest points are a numerical 
   }
 }
 
-TEST_CASE("FCL on vertices at 5.9e68 beside features of size 1: refused as invalid input, not a "
-          "query that never returns",
-          "[regression][fuzz]") {
+TEST_CASE(
+    "FCL on vertices at 5.9e68 beside features of size 1: refused as invalid input, not a "
+    "query that never returns",
+    "[regression][fuzz]") {
   // fcl-libccd's collide path runs libccd's MPR, whose loops take no iteration bound: on this
   // pair (found by fuzzing the queries) `gjklab query` with the default algorithms hung.
   const experiment::PointCase c = fuzz_case("fcl_libccd_mpr_hang_vertices_at_5.9e68.jsonl");
@@ -147,15 +156,16 @@ TEST_CASE("FCL on vertices at 5.9e68 beside features of size 1: refused as inval
   options.oracle.depth = true;
   for (const char* name : {"fcl-libccd", "fcl-indep"}) {
     CAPTURE(name);
-    const experiment::Outcome o = experiment::run_algorithm(*experiment::find_algorithm(name), a,
-                                                            b, SweptRadii{}, options);
+    const experiment::Outcome o =
+        experiment::run_algorithm(*experiment::find_algorithm(name), a, b, SweptRadii{}, options);
     CHECK(o.termination == Termination::invalid_input);
   }
 }
 
-TEST_CASE("FCL on a vertex at 1e300 against a point at -7e174: refused as invalid input, not an "
-          "assertion that aborts the program",
-          "[regression][fuzz]") {
+TEST_CASE(
+    "FCL on a vertex at 1e300 against a point at -7e174: refused as invalid input, not an "
+    "assertion that aborts the program",
+    "[regression][fuzz]") {
   // fcl-libccd's GJK distance asserted "A is not in region 1" (its triple products overflow)
   // and Debian's FCL keeps assertions: `gjklab query` died on this pair.
   const experiment::PointCase c = fuzz_case("fcl_vertex_at_1e300_assertion_abort.jsonl");

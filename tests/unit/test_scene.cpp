@@ -24,7 +24,8 @@ std::vector<Vec3> cloud_of(const Polytope& p) {
 TEST_CASE("scene: a box's mass properties are the textbook ones", "[unit][scene]") {
   const Vec3 e(2, 1, 0.5);
   std::vector<Vec3> cloud = cloud_of(shapes::box(e));
-  for (Vec3& v : cloud) v += Vec3(3, -1, 7);  // off-centre: the centroid must be found
+  for (Vec3& v : cloud)
+    v += Vec3(3, -1, 7);  // off-centre: the centroid must be found
   const auto shape = make_convex_shape(cloud);
   CHECK(shape->volume == Approx(1.0));
   CHECK((-shape->input_origin - Vec3(3, -1, 7)).norm() < 1e-12);
@@ -76,7 +77,7 @@ TEST_CASE("scene: grid and sweep-and-prune give exactly the all-pairs overlap se
     for (Aabb& b : boxes) {
       const Vec3 c(u(rng) * region, u(rng) * region - region / 2, u(rng) * region);
       Vec3 half(0.05 + u(rng), 0.05 + u(rng), 0.05 + u(rng));
-      if (u(rng) < 0.03) half *= 40;  // a few large boxes (grounds, containers)
+      if (u(rng) < 0.03) half *= 40;      // a few large boxes (grounds, containers)
       if (u(rng) < 0.05) half.setZero();  // and points: touching counts
       b = {c - half, c + half};
     }

@@ -1,7 +1,7 @@
 // `gjklab simulate`: scene files with errors naming file, line and key; a small scene run to
 // its archive; an existing archive kept without --force.
-#include <catch2/catch.hpp>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -53,7 +53,8 @@ std::string error_of(const std::string& text) {
 
 int run_cli(std::vector<std::string> args, std::string& out_text, std::string& err_text) {
   std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args) argv.push_back(a.c_str());
+  for (const auto& a : args)
+    argv.push_back(a.c_str());
   std::istringstream in;
   std::ostringstream out, err;
   const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
@@ -90,8 +91,8 @@ TEST_CASE("simulate: scene file errors name file, line and key", "[unit][scene]"
 }
 
 TEST_CASE("simulate: a small scene runs to a complete archive", "[unit][scene]") {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("gjklab-scene-test-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("gjklab-scene-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string scene = (dir / "tiny.toml").string();
   const std::string archive = (dir / "tiny.h5").string();

@@ -22,8 +22,8 @@ std::shared_ptr<const ConvexShape> shape_of(const Polytope& p) {
 
 /// A static ground: a 40 × 40 × 1 box whose top face is the plane z = 0.
 void add_ground(World& world) {
-  world.add(make_static_body(shape_of(shapes::box(Vec3(40, 40, 1))), Quat::Identity(),
-                             Vec3(0, 0, -0.5)));
+  world.add(
+      make_static_body(shape_of(shapes::box(Vec3(40, 40, 1))), Quat::Identity(), Vec3(0, 0, -0.5)));
 }
 
 Quat random_rotation(std::mt19937_64& rng) {
@@ -92,7 +92,8 @@ TEST_CASE("scene physics: momentum is conserved in free two-body collisions", "[
       const Vec3 p0 = world.linear_momentum();
       const Vec3 l0 = world.angular_momentum();
       std::size_t contacts = 0;
-      for (int frame = 0; frame < 240; ++frame) contacts += world.step().contacts;
+      for (int frame = 0; frame < 240; ++frame)
+        contacts += world.step().contacts;
       INFO("restitution " << restitution << ", position iterations " << correction);
       CHECK(contacts > 0);
       // The bodies must have exchanged momentum (they did collide) …
@@ -121,8 +122,8 @@ TEST_CASE("scene physics: a stack of 10 boxes stays at rest", "[unit][scene]") {
   const auto cube = shape_of(shapes::box(Vec3(size, size, size)));
   std::vector<std::uint32_t> ids;
   for (int i = 0; i < 10; ++i)
-    ids.push_back(world.add(make_dynamic_body(cube, 500, Quat::Identity(),
-                                              Vec3(0, 0, size * (0.5 + i)))));
+    ids.push_back(
+        world.add(make_dynamic_body(cube, 500, Quat::Identity(), Vec3(0, 0, size * (0.5 + i)))));
   const Vec3 top0 = world.bodies()[ids.back()].pose.translation;
   double worst_penetration = 0;
   const int frames = static_cast<int>(std::lround(2.0 / s.dt));  // 2 s simulated
@@ -135,7 +136,8 @@ TEST_CASE("scene physics: a stack of 10 boxes stays at rest", "[unit][scene]") {
   CHECK(worst_penetration < 0.01 * size);
   CHECK((top - top0).norm() < 0.01 * size);
   CHECK(world.contacts().size() >= 40);  // four points on each of the ten faces in contact
-  for (std::uint32_t id : ids) CHECK(world.bodies()[id].velocity.norm() < 0.01);
+  for (std::uint32_t id : ids)
+    CHECK(world.bodies()[id].velocity.norm() < 0.01);
 }
 
 TEST_CASE("scene physics: no NaN after 10^4 frames of a small scene", "[unit][scene]") {
@@ -182,7 +184,8 @@ TEST_CASE("scene physics: the broad phases give the same simulation; warm starts
     for (int i = 0; i < 12; ++i)
       world.add(make_dynamic_body(i % 2 ? cone : cyl, 900, random_rotation(rng),
                                   Vec3(0.4 * (i % 3), 0.3 * (i % 4), 0.8 + 1.1 * i)));
-    for (int frame = 0; frame < 300; ++frame) stats.push_back(world.step());
+    for (int frame = 0; frame < 300; ++frame)
+      stats.push_back(world.step());
     return world.bodies();
   };
   std::vector<StepStats> sa, sg, ss, cold;
@@ -207,7 +210,8 @@ TEST_CASE("scene physics: the broad phases give the same simulation; warm starts
   CHECK(warm_iterations < cold_iterations);
   // Cold runs with measure_cold count the same queries twice: both means are equal.
   run(BroadPhaseKind::all_pairs, false, cold);
-  for (const StepStats& st : cold) CHECK(st.iterations_mean == st.iterations_cold_mean);
+  for (const StepStats& st : cold)
+    CHECK(st.iterations_mean == st.iterations_cold_mean);
 }
 
 TEST_CASE("scene physics: settings out of range are refused", "[unit][scene]") {
