@@ -170,15 +170,7 @@ EpaResult to_double(const EpaResultT<T>& r) {
     return r;
   } else {
     EpaResult out;
-    out.intersect = r.intersect;
-    out.distance = static_cast<double>(r.distance);
-    out.depth = static_cast<double>(r.depth);
-    out.normal = r.normal.template cast<double>();
-    out.witness_a = r.witness_a.template cast<double>();
-    out.witness_b = r.witness_b.template cast<double>();
-    out.iterations = r.iterations;
-    out.support_calls = r.support_calls;
-    out.termination = r.termination;
+    static_cast<PenetrationResult&>(out) = to_double(static_cast<const PenetrationResultT<T>&>(r));
     out.stop = r.stop;
     out.gjk_iterations = r.gjk_iterations;
     out.depth_upper_bound = static_cast<double>(r.depth_upper_bound);

@@ -84,4 +84,20 @@ struct PenetrationResultT {
 
 using PenetrationResult = PenetrationResultT<double>;
 
+/// The answer in double (exact from float; long double rounded to nearest).
+template <class T>
+PenetrationResult to_double(const PenetrationResultT<T>& r) {
+  PenetrationResult out;
+  out.intersect = r.intersect;
+  out.distance = static_cast<double>(r.distance);
+  out.depth = static_cast<double>(r.depth);
+  out.normal = r.normal.template cast<double>();
+  out.witness_a = r.witness_a.template cast<double>();
+  out.witness_b = r.witness_b.template cast<double>();
+  out.iterations = r.iterations;
+  out.support_calls = r.support_calls;
+  out.termination = r.termination;
+  return out;
+}
+
 }  // namespace gjklab
