@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <ostream>
+#include <sstream>
 
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/ranks.hpp"
 #include "gjklab/experiment/summary.hpp"
 
 namespace gjklab::cli {
@@ -96,51 +99,83 @@ CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args) {
   return cmd;
 }
 
+namespace {
+
+/// The MPI job this process was started in (mpirun, srun), or none: a process started alone
+/// runs as before. A launcher starting several copies of a build without MPI is refused
+/// (each would run the whole experiment into the same archive).
+std::unique_ptr<experiment::Ranks> join_launched_job() {
+  const int launched = experiment::launched_ranks();
+  if (launched == 0 || (launched == 1 && !experiment::built_with_mpi())) return nullptr;
+  return experiment::join_mpi_job();
+}
+
+int run_or_resume(const RunArgs& args, experiment::RunOptions& options, std::ostream& out,
+                  std::ostream& err) {
+  if (!args.resume.empty()) {
+    if (!args.output.empty() || args.cases > 0 || args.force) {
+      err << "gjklab run: --resume continues the archived run as it was planned; --out, "
+             "--cases and --force do not apply\n";
+      return 2;
+    }
+    const StopSignals stop_signals;
+    const experiment::RunReport report = experiment::resume_experiment(args.resume, options);
+    return report_run(report,
+                      "resumed run (" + std::to_string(report.resumed_cases) + " cases taken over)",
+                      out, err);
+  }
+  const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
+  if (!args.output.empty()) options.output = args.output;
+  if (args.cases > 0) options.cases = args.cases;
+  options.force = args.force;
+  const std::filesystem::path output = options.output.value_or(config.output);
+  std::error_code ec;
+  if (std::filesystem::equivalent(output, args.experiment, ec)) {
+    err << "gjklab run: the archive " << output.string()
+        << " would overwrite the experiment file itself; choose another --out\n";
+    return 2;
+  }
+  const StopSignals stop_signals;
+  const experiment::RunReport report = experiment::run_experiment(config, options);
+  return report_run(report, "experiment '" + config.name + "'", out, err);
+}
+
+}  // namespace
+
 int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream& err) {
   if (args.experiment.empty() == args.resume.empty()) {
     err << "gjklab run: give an experiment file, or --resume FILE (not both)\n";
     return 2;
   }
+  std::unique_ptr<experiment::Ranks> ranks;
+  // Rank 0 speaks for the job: the others print only errors of their own.
+  bool speaks = true;
+  std::ostringstream quiet;
   try {
+    ranks = join_launched_job();
+    speaks = !ranks || ranks->rank() == 0;
     experiment::RunOptions options;
     if (args.stop_after > 0) options.stop_after = args.stop_after;
     if (args.checkpoint > 0) options.checkpoint_cases = args.checkpoint;
     if (args.threads > 0) options.threads = args.threads;
-    options.progress = &err;
+    options.progress = speaks ? &err : nullptr;
     options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);
+    options.ranks = ranks.get();
     interrupted = false;
     options.stop = &interrupted;
-    if (!args.resume.empty()) {
-      if (!args.output.empty() || args.cases > 0 || args.force) {
-        err << "gjklab run: --resume continues the archived run as it was planned; --out, "
-               "--cases and --force do not apply\n";
-        return 2;
-      }
-      const StopSignals stop_signals;
-      const experiment::RunReport report = experiment::resume_experiment(args.resume, options);
-      return report_run(
-          report, "resumed run (" + std::to_string(report.resumed_cases) + " cases taken over)",
-          out, err);
-    }
-    const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
-    if (!args.output.empty()) options.output = args.output;
-    if (args.cases > 0) options.cases = args.cases;
-    options.force = args.force;
-    const std::filesystem::path output = options.output.value_or(config.output);
-    std::error_code ec;
-    if (std::filesystem::equivalent(output, args.experiment, ec)) {
-      err << "gjklab run: the archive " << output.string()
-          << " would overwrite the experiment file itself; choose another --out\n";
-      return 2;
-    }
-    const StopSignals stop_signals;
-    const experiment::RunReport report = experiment::run_experiment(config, options);
-    return report_run(report, "experiment '" + config.name + "'", out, err);
+    const int status = run_or_resume(args, options, speaks ? out : quiet, speaks ? err : quiet);
+    // Only the ranks a signal reached report it; the job's status is the worst rank's.
+    return status;
+  } catch (const experiment::PeerFailure&) {
+    return 1;  // rank 0 reported it
   } catch (const experiment::ConfigError& e) {
-    err << "gjklab run: " << e.what() << "\n";
+    if (speaks) err << "gjklab run: " << e.what() << "\n";  // the same on every rank
     return 2;
   } catch (const std::exception& e) {
-    err << "gjklab run: " << e.what() << "\n";
+    err << "gjklab run: " << (speaks ? "" : "rank " + std::to_string(ranks->rank()) + ": ")
+        << e.what() << "\n";
+    // The other ranks would wait for this one in the next round: end the job.
+    if (ranks && ranks->size() > 1 && !ranks->failure_shared) ranks->abort(1);
     return 1;
   }
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <ostream>
@@ -19,6 +20,9 @@
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/judging.hpp"
 #include "gjklab/experiment/provenance.hpp"
+#include "gjklab/experiment/ranks.hpp"
+#include "result_codec.hpp"
+#include "rounds.hpp"
 
 namespace gjklab::experiment {
 
@@ -240,12 +244,13 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
 
 namespace {
 
-/// The run loop shared by a fresh run and a resumed one: evaluates cases [first, total) in
-/// batches of options.checkpoint_cases on the worker threads, appends each batch in case
-/// order and checkpoints the archive. Stops early (archive incomplete) on a stop request or
-/// at options.stop_after.
+/// The run loop shared by a fresh run and a resumed one, on one process or on every rank of a
+/// distributed run: evaluates cases [first, total) in rounds of options.checkpoint_cases,
+/// appends each round in case order and checkpoints the archive (writer and prior: rank 0
+/// only). Stops early (archive incomplete) on a stop request or at options.stop_after.
 RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
-                    ArchiveWriter& writer, std::span<const CaseResult> prior, std::uint64_t total) {
+                    ArchiveWriter* writer, std::span<const CaseResult> prior, std::uint64_t first,
+                    std::uint64_t total) {
   RunReport report;
   const int threads = std::max(1, options.threads.value_or(config.threads));
   const std::uint64_t batch_cases = std::max<std::uint64_t>(1, options.checkpoint_cases);
@@ -254,12 +259,14 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
     names.push_back(a.label);
   SummaryBuilder summary(names);
   FamilySummaryBuilder by_family(config.result_family_names(), names);
-  Progress progress(options.progress, options.live_progress, total);
+  Progress progress(writer ? options.progress : nullptr, options.live_progress, total);
   const auto start = Clock::now();
-  auto stopping = [&] { return options.stop && options.stop->load(); };
+  const auto rounds =
+      make_rounds(config, threads, options.ranks, [stop = options.stop] { return stop && *stop; });
 
   auto record = [&](std::span<const CaseResult> results) {
-    writer.append(results);
+    if (!writer) return;
+    writer->append(results);
     for (const CaseResult& r : results) {
       summary.add(r);
       by_family.add(r);
@@ -267,9 +274,10 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
   };
   auto finish = [&](std::uint64_t written, bool complete) {
     progress.update(written, true);
-    writer.finish(utc_now(), complete);
-    report.output = complete ? std::filesystem::path(options.output.value_or(config.output))
-                             : writer.temporary_path();
+    if (writer) writer->finish(utc_now(), complete);
+    report.output = complete || !writer
+                        ? std::filesystem::path(options.output.value_or(config.output))
+                        : writer->temporary_path();
     report.cases = written;
     report.complete = complete;
     report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -281,48 +289,46 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
   for (std::size_t i = 0; i < prior.size(); i += batch_cases)
     record(prior.subspan(i, std::min<std::size_t>(batch_cases, prior.size() - i)));
 
-  std::vector<CaseResult> batch;
-  for (std::uint64_t first = prior.size(); first < total; first += batch_cases) {
+  // The archive keeps its temporary name when a round throws: nothing that looks complete is
+  // left behind.
+  for (; first < total; first += batch_cases) {
     const std::uint64_t count = std::min(batch_cases, total - first);
-    batch.assign(count, CaseResult{});
-    std::atomic<std::uint64_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    auto worker = [&] {
-      // The stop flag is read before an index is taken, so every taken case is finished and
-      // the finished cases of the batch are exactly its first min(next, count).
-      while (!stopping()) {
-        const std::uint64_t i = next++;
-        if (i >= count) break;
-        try {
-          batch[i] = evaluate_case(config, first + i);
-        } catch (const std::exception& e) {
-          const std::lock_guard lock(failure_mutex);
-          if (!failure)
-            failure = std::make_exception_ptr(
-                std::runtime_error("case " + std::to_string(first + i) + ": " + e.what()));
-          next = count;  // stop the other workers early
-        }
-      }
-    };
-    std::vector<std::jthread> pool;
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back(worker);
-    worker();
-    pool.clear();  // joins
-    // The archive keeps its temporary name: nothing that looks complete is left behind.
-    if (failure) std::rethrow_exception(failure);
-    if (stopping()) {
-      batch.resize(std::min<std::uint64_t>(next.load(), count));
-      record(batch);
-      return finish(first + batch.size(), false);
-    }
-    record(batch);
+    Round round = rounds->next(first, count);
+    record(round.results);
+    if (round.stop) return finish(first + round.results.size(), false);
     progress.update(first + count);
     if (options.stop_after && first + count >= *options.stop_after && first + count < total)
       return finish(first + count, false);
   }
   return finish(total, true);
+}
+
+}  // namespace
+
+namespace {
+
+/// Rank 0's setup in a distributed run (creating or reading the archive), made collective: its
+/// outcome is sent to every rank, so that a failure there (an existing archive, say) ends every
+/// rank with rank 0's message instead of leaving them waiting. `setup` runs on rank 0 and
+/// returns the bytes the other ranks need; they receive them.
+std::string shared_setup(Ranks* ranks, const std::function<std::string()>& setup) {
+  if (!ranks) return setup();
+  std::exception_ptr failure;
+  std::string message;
+  if (ranks->rank() == 0) {
+    try {
+      message = "+" + setup();
+    } catch (const std::exception& e) {
+      failure = std::current_exception();
+      message = "-";
+      message += e.what();
+    }
+  }
+  message = ranks->broadcast(message);
+  ranks->failure_shared = message.empty() || message.front() != '+';
+  if (failure) std::rethrow_exception(failure);
+  if (message.empty() || message.front() != '+') throw PeerFailure(message.substr(1));
+  return message.substr(1);
 }
 
 }  // namespace
@@ -333,8 +339,15 @@ RunReport run_experiment(const ExperimentConfig& config, const RunOptions& optio
   const std::uint64_t total = options.cases ? *options.cases * n_values : config.total_cases();
   RunOptions resolved = options;
   resolved.output = options.output.value_or(config.output);
-  ArchiveWriter writer(*resolved.output, archive_header(config, total), options.force);
-  return run_cases(config, resolved, writer, {}, total);
+  std::optional<ArchiveWriter> writer;
+  shared_setup(options.ranks, [&] {
+    ArchiveHeader header = archive_header(config, total);
+    if (options.ranks)
+      header.provenance.emplace_back("mpi_ranks", std::to_string(options.ranks->size()));
+    writer.emplace(*resolved.output, header, options.force);
+    return std::string();
+  });
+  return run_cases(config, resolved, writer ? &*writer : nullptr, {}, 0, total);
 }
 
 namespace {
@@ -356,9 +369,15 @@ Archive read_interrupted(const std::filesystem::path& temporary) {
   }
 }
 
-}  // namespace
+/// A resume's state on the writing process: the interrupted run read back and moved aside,
+/// and a fresh archive under the temporary name to rewrite it into.
+struct Resumption {
+  Archive prior;
+  std::filesystem::path final_path, aside, copy_aside;
+  std::optional<ArchiveWriter> writer;
+};
 
-RunReport resume_experiment(const std::filesystem::path& path, const RunOptions& options) {
+void prepare_resume(const std::filesystem::path& path, Resumption& r, const Ranks* ranks) {
   // The interrupted archive: FILE.tmp, named either way.
   std::filesystem::path temporary = path;
   if (temporary.extension() != ".tmp") temporary += ".tmp";
@@ -366,33 +385,57 @@ RunReport resume_experiment(const std::filesystem::path& path, const RunOptions&
     throw std::runtime_error(
         temporary.string() + ": no interrupted run to resume" +
         (std::filesystem::exists(path) ? " (" + path.string() + " is a finished archive)" : ""));
-  Archive prior = read_interrupted(temporary);
-  if (prior.complete) throw std::runtime_error(temporary.string() + " is already complete");
-  const ExperimentConfig config =
-      parse_experiment(prior.header.experiment_text, temporary.string() + " (archived experiment)");
-
-  std::filesystem::path final_path = temporary;
-  final_path.replace_extension();  // drops ".tmp"
+  r.prior = read_interrupted(temporary);
+  if (r.prior.complete) throw std::runtime_error(temporary.string() + " is already complete");
+  // Checked before anything is moved: a bad archived experiment leaves the files as they were.
+  (void)parse_experiment(r.prior.header.experiment_text,
+                         temporary.string() + " (archived experiment)");
+  r.final_path = temporary;
+  r.final_path.replace_extension();  // drops ".tmp"
   // The finished cases are rewritten into a fresh temporary file (identical to what an
   // uninterrupted run writes); the interrupted file is kept aside until that succeeds.
-  const std::filesystem::path aside = temporary.string() + ".partial";
-  const std::filesystem::path copy_aside = aside.string() + ".checkpoint";
-  std::filesystem::rename(temporary, aside);
+  r.aside = temporary.string() + ".partial";
+  r.copy_aside = r.aside.string() + ".checkpoint";
+  std::filesystem::rename(temporary, r.aside);
   if (std::filesystem::exists(snapshot_path(temporary)))
-    std::filesystem::rename(snapshot_path(temporary), copy_aside);
-  ArchiveHeader header = prior.header;
+    std::filesystem::rename(snapshot_path(temporary), r.copy_aside);
+  ArchiveHeader header = r.prior.header;
   header.provenance = build_provenance();
+  if (ranks) header.provenance.emplace_back("mpi_ranks", std::to_string(ranks->size()));
+  r.writer.emplace(r.final_path, header, /*overwrite=*/false);
+}
+
+}  // namespace
+
+RunReport resume_experiment(const std::filesystem::path& path, const RunOptions& options) {
+  Resumption r;
+  // Rank 0 reads the archive; every rank needs its experiment, first case and planned total.
+  const std::string plan = shared_setup(options.ranks, [&] {
+    prepare_resume(path, r, options.ranks);
+    codec::ByteWriter out;
+    out.put<std::uint64_t>(r.prior.results.size());
+    out.put<std::uint64_t>(r.prior.header.cases_planned);
+    out.put_string(r.final_path.string());
+    out.put_string(r.prior.header.experiment_text);
+    return out.take();
+  });
+  codec::ByteReader in(plan);
+  const auto first = in.get<std::uint64_t>();
+  const auto total = in.get<std::uint64_t>();
+  const std::string output = in.get_string();
+  const ExperimentConfig config =
+      parse_experiment(in.get_string(), output + ".tmp (archived experiment)");
   RunOptions resolved = options;
-  resolved.output = final_path.string();
-  RunReport report;
-  {
-    ArchiveWriter writer(final_path, header, /*overwrite=*/false);
-    const std::vector<CaseResult> finished = std::move(prior.results);
-    report = run_cases(config, resolved, writer, finished, header.cases_planned);
-    report.resumed_cases = finished.size();
+  resolved.output = output;
+  const std::vector<CaseResult> finished = std::move(r.prior.results);
+  RunReport report =
+      run_cases(config, resolved, r.writer ? &*r.writer : nullptr, finished, first, total);
+  report.resumed_cases = first;
+  if (r.writer) {
+    r.writer.reset();
+    std::filesystem::remove(r.aside);
+    std::filesystem::remove(r.copy_aside);
   }
-  std::filesystem::remove(aside);
-  std::filesystem::remove(copy_aside);
   return report;
 }
 

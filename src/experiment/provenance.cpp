@@ -7,6 +7,7 @@
 
 #include "gjklab/build_info.hpp"
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/ranks.hpp"
 #include "gjklab/peers/libccd.hpp"
 #ifdef GJKLAB_HAVE_FCL
 #include "gjklab/peers/fcl.hpp"
@@ -56,6 +57,9 @@ std::vector<std::pair<std::string, std::string>> build_provenance() {
       {"libccd_version", peers::libccd_version()},
       {"optional_peers", optional_peers()},
   };
+  // Distributed runs: the MPI library this build joins jobs with (absent without MPI).
+  if (const std::string mpi = mpi_library_version(); !mpi.empty())
+    p.emplace_back("mpi_version", mpi);
 #ifdef GJKLAB_HAVE_FCL
   p.emplace_back("fcl_version", peers::fcl_version());
   p.emplace_back("fcl_settings", peers::fcl_settings());

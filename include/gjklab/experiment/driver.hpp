@@ -15,6 +15,8 @@
 
 namespace gjklab::experiment {
 
+class Ranks;
+
 /// Default checkpoint interval, in cases.
 inline constexpr std::uint64_t kDefaultCheckpointCases = 512;
 
@@ -34,6 +36,10 @@ struct RunOptions {
   std::uint64_t checkpoint_cases = kDefaultCheckpointCases;
   /// Stop (incomplete, resumable) once this many cases are written: a long run in parts.
   std::optional<std::uint64_t> stop_after;
+  /// The ranks of a distributed run (ranks.hpp), or none: each rank evaluates its share of
+  /// every round of cases and rank 0 writes the one archive (its output, progress and report;
+  /// the other ranks' reports hold no summary).
+  Ranks* ranks = nullptr;
 };
 
 struct RunReport {
