@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pair_order.hpp"
+
 namespace gjklab::scene {
+
+using detail::ordered;
 
 std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name) {
   for (BroadPhaseKind k :
@@ -18,71 +22,6 @@ void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
   for (std::uint32_t i = 0; i < n; ++i)
     for (std::uint32_t j = i + 1; j < n; ++j)
       if (boxes[i].overlaps(boxes[j])) out.emplace_back(i, j);
-}
-
-namespace {
-
-BodyPair ordered(std::uint32_t a, std::uint32_t b) {
-  return a < b ? BodyPair{a, b} : BodyPair{b, a};
-}
-
-/// Sorts pairs (i, j) as the 64-bit keys i·2³² + j: the same order, in one integer compare.
-void sort_pairs(std::vector<BodyPair>& pairs) {
-  static thread_local std::vector<std::uint64_t> keys;
-  keys.resize(pairs.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    keys[k] = (static_cast<std::uint64_t>(pairs[k].first) << 32) | pairs[k].second;
-  std::sort(keys.begin(), keys.end());
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    pairs[k] = {static_cast<std::uint32_t>(keys[k] >> 32), static_cast<std::uint32_t>(keys[k])};
-}
-
-}  // namespace
-
-void SweepAndPrune::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
-  out.clear();
-  const auto n = static_cast<std::uint32_t>(boxes.size());
-  // Sweep along the axis on which the centres spread most: fewest boxes share an interval.
-  Vec3 sum = Vec3::Zero(), sum2 = Vec3::Zero();
-  for (const Aabb& b : boxes) {
-    const Vec3 c = 0.5 * (b.lower + b.upper);
-    if (!c.allFinite()) continue;
-    sum += c;
-    sum2 += c.cwiseProduct(c);
-  }
-  int axis = 0;
-  (sum2 - sum.cwiseProduct(sum) / std::max<double>(n, 1)).maxCoeff(&axis);
-  if (order_.size() != n || axis != axis_) {
-    order_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i)
-      order_[i] = i;
-    axis_ = axis;
-  }
-  // Insertion sort on the lower bound from last frame's order (nearly sorted: about n steps).
-  for (std::uint32_t k = 1; k < n; ++k) {
-    const std::uint32_t body = order_[k];
-    const double key = boxes[body].lower[axis];
-    std::uint32_t m = k;
-    while (m > 0 && boxes[order_[m - 1]].lower[axis] > key) {
-      order_[m] = order_[m - 1];
-      --m;
-    }
-    order_[m] = body;
-  }
-  // The sweep reads the boxes in sorted order from a contiguous copy (no gather per test).
-  sorted_.resize(n);
-  for (std::uint32_t k = 0; k < n; ++k)
-    sorted_[k] = boxes[order_[k]];
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const Aabb& a = sorted_[k];
-    const double end = a.upper[axis];
-    for (std::uint32_t m = k + 1; m < n; ++m) {
-      const Aabb& b = sorted_[m];
-      if (b.lower[axis] > end) break;  // every later box starts further along
-      if (a.overlaps(b)) out.push_back(ordered(order_[k], order_[m]));
-    }
-  }
-  sort_pairs(out);
 }
 
 namespace {
@@ -152,11 +91,14 @@ void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>&
   std::int64_t lo[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, hi[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
   for (std::uint32_t i = 0; i < n; ++i) {
     const CellRange r = cell_range(boxes[i], inv);
-    if (!(r.count() <= double(kMaxCellsPerBox))) {
+    // An inverted box (lower above upper) spans no cell range, yet all_pairs' test can still
+    // accept it: it is tested against every box, like a large one. (A NaN box is in cell 0
+    // and overlaps nothing.)
+    const bool inverted = r.hi[0] < r.lo[0] || r.hi[1] < r.lo[1] || r.hi[2] < r.lo[2];
+    if (inverted || !(r.count() <= double(kMaxCellsPerBox))) {
       large_.push_back(i);
       continue;
     }
-    if (r.count() <= 0) continue;  // a NaN box: overlaps nothing
     ranges_[i] = {r.lo[0], r.lo[1], r.lo[2], r.hi[0], r.hi[1], r.hi[2]};
     small_.push_back(i);
     for (int a = 0; a < 3; ++a) {
@@ -182,7 +124,7 @@ void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>&
         if (other_large && j < big) continue;
         out.push_back(ordered(big, j));
       }
-  sort_pairs(out);
+  detail::sort_pairs(out, n, sort_tmp_, sort_count_);
 }
 
 bool UniformGrid::owns(const Range& a, const Range& b, std::int64_t x, std::int64_t y,
