@@ -112,7 +112,7 @@ std::optional<std::vector<PolytopeVertex>> polytope_vertices(std::span<const Vec
         static_cast<std::size_t>(p.b) >= b.size())
       return std::nullopt;
     PolytopeVertex v;
-    v.exact = detail::to_integer(a[p.a], exponent) - detail::to_integer(b[p.b], exponent);
+    v.exact = detail::to_integer<Int>(a[p.a], exponent) - detail::to_integer<Int>(b[p.b], exponent);
     v.approx = a[p.a] - b[p.b];
     // Rounding is monotone, so equal exact points have equal rounded points.
     for (const PolytopeVertex& u : out)
@@ -285,8 +285,8 @@ std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span
     const PolytopeFace& f = p->faces[nearest_face(p->faces)];
     // Its plane must support A − B: max over a of n·A − min over b of n·B = c (the maximum is
     // at least c, since the face's own vertices are points of A − B).
-    const detail::Extreme high = detail::extreme_point(a, f.normal, frame, true);
-    const detail::Extreme low = detail::extreme_point(b, f.normal, frame, false);
+    const detail::Extreme<Int> high = detail::extreme_point(a, f.normal, frame, true);
+    const detail::Extreme<Int> low = detail::extreme_point(b, f.normal, frame, false);
     if (high.value - low.value == f.offset) {
       // depth² = c²/‖n‖² in frame units²: c has units 2^(3e) and n 2^(2e), so ×4^e.
       detail::Mpq depth2;
@@ -307,8 +307,8 @@ std::optional<DepthCertificate> certify_depth(std::span<const Vec3> a, std::span
     const IndexPair next{static_cast<std::int32_t>(high.index),
                          static_cast<std::int32_t>(low.index)};
     current = expanded(current, *p, next,
-                       detail::to_integer(a[high.index], frame.exponent) -
-                           detail::to_integer(b[low.index], frame.exponent));
+                       detail::to_integer<Int>(a[high.index], frame.exponent) -
+                           detail::to_integer<Int>(b[low.index], frame.exponent));
   }
   return std::nullopt;
 }

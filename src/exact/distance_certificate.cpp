@@ -1,49 +1,60 @@
 // The distance and intersection certificate: exact GJK warm-started from a floating-point
 // simplex (see certificate.hpp). No CGAL here.
 //
-// The simplex's points W_k = A_i − B_j are integer vectors in the clouds' common frame. The
-// point of their hull closest to the origin is v = N / D with an integer vector N and an
-// integer D > 0, from Cramer's rule on the Gram system of the sub-simplex that holds it; every
-// test below is a comparison of integers.
+// The simplex's points W_k = A_i − B_j are integer vectors in a common frame: the unit of the
+// points it starts from, refined whenever a point it needs is finer. The point of their hull
+// closest to the origin is v = N / D with an integer vector N and an integer D > 0, from
+// Cramer's rule on the Gram system of the sub-simplex that holds it; every test below is a
+// comparison of integers. The steps run first on fixed-width integers (Wide), which need no
+// allocation; when those overflow (coordinates of very different magnitudes) they run again
+// on GMP's. Both give the same answer, since both are exact.
 #include <gmp.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "gjklab/exact/certificate.hpp"
 #include "gmp_support.hpp"
 #include "integer_geometry.hpp"
+#include "wide_int.hpp"
+#include "wide_rounding.hpp"
 
 namespace gjklab::exact {
 
 namespace {
 
 using detail::Int;
-using detail::IntVec;
+using detail::Vec3Of;
+using detail::Wide;
 using detail::operator-;
 using detail::cross;
 using detail::dot;
 
 /// The point of the hull of a few integer points closest to the origin: v = numerator /
 /// denominator, v = Σ weights[k]·W_k / denominator over the points in `subset`.
+template <class I>
 struct ExactClosest {
   std::uint8_t subset = 0;  ///< bit k ↔ point k
-  std::array<Int, 4> weights;
-  Int denominator;  ///< > 0
-  IntVec numerator;
+  std::array<I, 4> weights;
+  I denominator;  ///< > 0
+  Vec3Of<I> numerator;
 };
 
 /// The closest point of the affine hull of the points of `subset` (bit k ↔ w[k]), with its
 /// barycentric weights; nullopt when those points are affinely dependent.
-std::optional<ExactClosest> affine_closest(std::span<const IntVec> w, std::uint8_t subset) {
+template <class I>
+std::optional<ExactClosest<I>> affine_closest(std::span<const Vec3Of<I>> w, std::uint8_t subset) {
   std::array<int, 4> idx{};
   int k = 0;
   for (int i = 0; i < static_cast<int>(w.size()); ++i)
     if (subset & (1u << i)) idx[k++] = i;
-  ExactClosest c;
+  ExactClosest<I> c;
   c.subset = subset;
-  const IntVec& w0 = w[idx[0]];
+  const Vec3Of<I>& w0 = w[idx[0]];
   if (k == 1) {
     c.weights[idx[0]] = 1;
     c.denominator = 1;
@@ -53,13 +64,13 @@ std::optional<ExactClosest> affine_closest(std::span<const IntVec> w, std::uint8
   if (k == 4) {
     // Four points span space when independent: the closest point of the affine hull is the
     // origin, with barycentric weights from Cramer's rule on [e1 e2 e3]·μ = −w0.
-    const IntVec e1 = w[idx[1]] - w0, e2 = w[idx[2]] - w0, e3 = w[idx[3]] - w0;
-    const IntVec minus_w0 = {-w0[0], -w0[1], -w0[2]};
-    Int det = dot(e1, cross(e2, e3));
+    const Vec3Of<I> e1 = w[idx[1]] - w0, e2 = w[idx[2]] - w0, e3 = w[idx[3]] - w0;
+    const Vec3Of<I> minus_w0 = {-w0[0], -w0[1], -w0[2]};
+    I det = dot(e1, cross(e2, e3));
     if (sgn(det) == 0) return std::nullopt;
-    Int l1 = dot(minus_w0, cross(e2, e3));
-    Int l2 = dot(e1, cross(minus_w0, e3));
-    Int l3 = dot(e1, cross(e2, minus_w0));
+    I l1 = dot(minus_w0, cross(e2, e3));
+    I l2 = dot(e1, cross(minus_w0, e3));
+    I l3 = dot(e1, cross(e2, minus_w0));
     if (sgn(det) < 0) {
       det = -det;
       l1 = -l1;
@@ -75,21 +86,21 @@ std::optional<ExactClosest> affine_closest(std::span<const IntVec> w, std::uint8
     return c;
   }
   // Two or three points: minimise ‖w0 + Σ μ_i e_i‖² (Gram system G μ = r, r_i = −e_i·w0).
-  const IntVec e1 = w[idx[1]] - w0;
+  const Vec3Of<I> e1 = w[idx[1]] - w0;
   if (k == 2) {
-    const Int g = dot(e1, e1);
+    const I g = dot(e1, e1);
     if (sgn(g) == 0) return std::nullopt;
-    const Int r = -dot(e1, w0);
+    const I r = -dot(e1, w0);
     c.weights[idx[0]] = g - r;
     c.weights[idx[1]] = r;
     c.denominator = g;
   } else {
-    const IntVec e2 = w[idx[2]] - w0;
-    const Int g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
-    const Int r1 = -dot(e1, w0), r2 = -dot(e2, w0);
-    const Int det = g11 * g22 - g12 * g12;
+    const Vec3Of<I> e2 = w[idx[2]] - w0;
+    const I g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+    const I r1 = -dot(e1, w0), r2 = -dot(e2, w0);
+    const I det = g11 * g22 - g12 * g12;
     if (sgn(det) == 0) return std::nullopt;
-    const Int l1 = r1 * g22 - g12 * r2, l2 = g11 * r2 - g12 * r1;
+    const I l1 = r1 * g22 - g12 * r2, l2 = g11 * r2 - g12 * r1;
     c.weights[idx[0]] = det - l1 - l2;
     c.weights[idx[1]] = l1;
     c.weights[idx[2]] = l2;
@@ -104,10 +115,11 @@ std::optional<ExactClosest> affine_closest(std::span<const IntVec> w, std::uint8
 
 /// True if v = c's point is the closest point of the hull of all of w: v lies in the hull of
 /// its subset (weights ≥ 0) and every point satisfies v·w_k ≥ v·v (D·(N·W_k) ≥ N·N).
-bool is_closest(const ExactClosest& c, std::span<const IntVec> w) {
+template <class I>
+bool is_closest(const ExactClosest<I>& c, std::span<const Vec3Of<I>> w) {
   for (std::size_t k = 0; k < w.size(); ++k)
     if ((c.subset & (1u << k)) && sgn(c.weights[k]) < 0) return false;
-  const Int nn = dot(c.numerator, c.numerator);
+  const I nn = dot(c.numerator, c.numerator);
   for (std::size_t k = 0; k < w.size(); ++k)
     if (!(c.subset & (1u << k)) && c.denominator * dot(c.numerator, w[k]) < nn) return false;
   return true;
@@ -117,18 +129,30 @@ bool is_closest(const ExactClosest& c, std::span<const IntVec> w) {
 /// usual case for a converged hint), then every other subset until one passes is_closest.
 /// By Carathéodory some affinely independent subset holds the closest point in its relative
 /// interior, so the search succeeds; nullopt only guards against the impossible.
-std::optional<ExactClosest> closest_on_hull(std::span<const IntVec> w) {
+template <class I>
+std::optional<ExactClosest<I>> closest_on_hull(std::span<const Vec3Of<I>> w) {
   const auto full = static_cast<std::uint8_t>((1u << w.size()) - 1);
   for (std::uint8_t subset = full; subset > 0; --subset) {
-    std::optional<ExactClosest> c = affine_closest(w, subset);
+    std::optional<ExactClosest<I>> c = affine_closest(w, subset);
     if (c && is_closest(*c, w)) return c;
   }
   return std::nullopt;
 }
 
+/// The same integer as a GMP one (the outputs' conversions work on mpz).
+const Int& as_mpz(const Int& x) {
+  return x;
+}
+Int as_mpz(const Wide& x) {
+  Int z;
+  x.to_mpz(z.get_mpz_t());
+  return z;
+}
+
 /// q := N·N / D² · 4^exponent, in lowest terms.
-void squared_length(const IntVec& n, const Int& d, long exponent, mpq_ptr q) {
-  const Int nn = dot(n, n), dd = d * d;
+template <class I>
+void squared_length(const Vec3Of<I>& n, const I& d, long exponent, mpq_ptr q) {
+  const Int nn = as_mpz(dot(n, n)), dd = as_mpz(d * d);
   mpq_set_num(q, nn.get_mpz_t());
   mpq_set_den(q, dd.get_mpz_t());
   mpq_canonicalize(q);
@@ -136,35 +160,63 @@ void squared_length(const IntVec& n, const Int& d, long exponent, mpq_ptr q) {
   if (exponent < 0) mpq_div_2exp(q, q, static_cast<mp_bitcnt_t>(-2 * exponent));
 }
 
+/// The double nearest to num/den·2^exponent: without GMP where the fast conversion proves
+/// its answer, else with it.
+double nearest_double_of(const Int& num, const Int& den, long exponent) {
+  return detail::nearest_double(num.get_mpz_t(), den.get_mpz_t(), exponent);
+}
+double nearest_double_of(const Wide& num, const Wide& den, long exponent) {
+  if (const std::optional<double> r = detail::nearest_quotient(num, den, exponent)) return *r;
+  return nearest_double_of(as_mpz(num), as_mpz(den), exponent);
+}
+
+/// The double nearest to √(N·N / D²·4^exponent), the distance; d2 is that value as a rational.
+double nearest_distance(const ExactClosest<Int>&, long, mpq_srcptr d2) {
+  return detail::nearest_sqrt(d2);
+}
+double nearest_distance(const ExactClosest<Wide>& c, long exponent, mpq_srcptr d2) {
+  const Wide nn = dot(c.numerator, c.numerator), dd = c.denominator * c.denominator;
+  if (const std::optional<double> r = detail::nearest_sqrt(nn, dd, 2 * exponent)) return *r;
+  return detail::nearest_sqrt(d2);
+}
+
 /// The nearest double to Σ weights[k]·points[k] / denominator · 2^exponent, per coordinate.
-Vec3 nearest_combination(const ExactClosest& c, std::span<const IntVec> points, long exponent) {
+template <class I>
+Vec3 nearest_combination(const ExactClosest<I>& c, std::span<const Vec3Of<I>> points,
+                         long exponent) {
   Vec3 out;
-  Int sum;
   for (int j = 0; j < 3; ++j) {
-    sum = 0;
+    I sum = 0;
     for (std::size_t k = 0; k < points.size(); ++k)
       if (c.subset & (1u << k)) sum += c.weights[k] * points[k][j];
-    out[j] = detail::nearest_double(sum.get_mpz_t(), c.denominator.get_mpz_t(), exponent);
+    out[j] = nearest_double_of(sum, c.denominator, exponent);
   }
   return out;
 }
 
-/// The exact GJK state: the simplex's index pairs and their points in A, in B and in A − B.
+/// The exact GJK state: the simplex's index pairs and their points in A, in B and in A − B
+/// (at most four; fixed storage, as the state is rebuilt for every certificate).
+template <class I>
 struct ExactSimplex {
-  std::vector<exact::IndexPair> pairs;
-  std::vector<IntVec> a, b, w;
+  std::array<IndexPair, 4> pairs;
+  std::array<Vec3Of<I>, 4> a, b, w;
+  std::size_t size = 0;
 
-  bool contains(const IntVec& x) const { return std::find(w.begin(), w.end(), x) != w.end(); }
-  void push(const exact::IndexPair& p, IntVec pa, IntVec pb) {
-    IntVec pw = pa - pb;
-    pairs.push_back(p);
-    a.push_back(std::move(pa));
-    b.push_back(std::move(pb));
-    w.push_back(std::move(pw));
+  std::span<const Vec3Of<I>> points_a() const { return {a.data(), size}; }
+  std::span<const Vec3Of<I>> points_b() const { return {b.data(), size}; }
+  std::span<const Vec3Of<I>> points_w() const { return {w.data(), size}; }
+  bool contains(const Vec3Of<I>& x) const {
+    return std::find(w.begin(), w.begin() + size, x) != w.begin() + size;
+  }
+  void push(const IndexPair& p, Vec3Of<I> pa, Vec3Of<I> pb) {
+    w[size] = pa - pb;
+    a[size] = std::move(pa);
+    b[size] = std::move(pb);
+    pairs[size++] = p;
   }
   void keep(std::uint8_t subset) {
     std::size_t out = 0;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
+    for (std::size_t k = 0; k < size; ++k) {
       if (!(subset & (1u << k))) continue;
       if (out != k) {
         pairs[out] = pairs[k];
@@ -174,30 +226,118 @@ struct ExactSimplex {
       }
       ++out;
     }
-    pairs.resize(out);
-    a.resize(out);
-    b.resize(out);
-    w.resize(out);
+    size = out;
   }
 };
 
+bool in_range(std::int32_t i, std::size_t n) {
+  return i >= 0 && static_cast<std::size_t>(i) < n;
+}
+
 /// The hint's usable points: in range, not repeated, at most four.
-ExactSimplex starting_simplex(std::span<const Vec3> a, std::span<const Vec3> b,
-                              const DistanceHint& hint, long exponent) {
-  ExactSimplex s;
-  auto in_range = [](std::int32_t i, std::size_t n) {
-    return i >= 0 && static_cast<std::size_t>(i) < n;
-  };
+template <class I>
+ExactSimplex<I> starting_simplex(std::span<const Vec3> a, std::span<const Vec3> b,
+                                 const DistanceHint& hint, long exponent) {
+  ExactSimplex<I> s;
   for (const IndexPair& p : hint.simplex) {
-    if (s.pairs.size() == 4) break;
+    if (s.size == 4) break;
     if (!in_range(p.a, a.size()) || !in_range(p.b, b.size())) continue;
-    IntVec pa = detail::to_integer(a[p.a], exponent), pb = detail::to_integer(b[p.b], exponent);
+    Vec3Of<I> pa = detail::to_integer<I>(a[p.a], exponent);
+    Vec3Of<I> pb = detail::to_integer<I>(b[p.b], exponent);
     if (s.contains(pa - pb)) continue;
     s.push(p, std::move(pa), std::move(pb));
   }
-  if (s.pairs.empty())
-    s.push({0, 0}, detail::to_integer(a[0], exponent), detail::to_integer(b[0], exponent));
+  if (s.size == 0)
+    s.push({0, 0}, detail::to_integer<I>(a[0], exponent), detail::to_integer<I>(b[0], exponent));
   return s;
+}
+
+/// Exact GJK from the hint, with every point an integer vector in units of 2^exponent.
+/// Throws FrameTooCoarse when a point it needs is not integral in that unit, and
+/// WideOverflow when I = Wide is too narrow.
+template <class I>
+std::optional<DistanceCertificate> certify_in_frame(std::span<const Vec3> a,
+                                                    std::span<const Vec3> b,
+                                                    const DistanceHint& hint, int max_steps,
+                                                    long exponent) {
+  const detail::IntegerFrame frame{exponent};
+  ExactSimplex<I> simplex = starting_simplex<I>(a, b, hint, exponent);
+  for (int step = 0; step <= max_steps; ++step) {
+    const std::optional<ExactClosest<I>> c = closest_on_hull<I>(simplex.points_w());
+    if (!c) return std::nullopt;
+    const auto finish = [&](bool intersect) {
+      DistanceCertificate out;
+      out.intersect = intersect;
+      out.witness_a = nearest_combination(*c, simplex.points_a(), exponent);
+      out.witness_b = nearest_combination(*c, simplex.points_b(), exponent);
+      simplex.keep(c->subset);
+      detail::Mpq d2;
+      if (!intersect) squared_length(c->numerator, c->denominator, exponent, d2.get());
+      out.distance_squared = detail::to_rational(d2.get());
+      out.distance = intersect ? 0.0 : nearest_distance(*c, exponent, d2.get());
+      out.feature.simplex.assign(simplex.pairs.begin(), simplex.pairs.begin() + simplex.size);
+      out.repair_steps = step;
+      return out;
+    };
+    if (detail::is_zero(c->numerator)) return finish(true);  // the origin is in the hull
+
+    // Separated iff min over a of N·A − max over b of N·B ≥ N·N / D.
+    const detail::Extreme<I> low = detail::extreme_point(a, c->numerator, frame, false);
+    const detail::Extreme<I> high = detail::extreme_point(b, c->numerator, frame, true);
+    if (c->denominator * (low.value - high.value) >= dot(c->numerator, c->numerator))
+      return finish(false);
+
+    // Not the closest point: continue from its sub-simplex and the violating support point.
+    const IndexPair next{static_cast<std::int32_t>(low.index),
+                         static_cast<std::int32_t>(high.index)};
+    Vec3Of<I> pa = detail::to_integer<I>(a[low.index], exponent);
+    Vec3Of<I> pb = detail::to_integer<I>(b[high.index], exponent);
+    simplex.keep(c->subset);
+    // In exact arithmetic the new point violates the test, so it is not in the simplex and
+    // the distance strictly decreases; a repeat would mean a bug, and is never an answer.
+    if (simplex.contains(pa - pb) || simplex.size >= 4) return std::nullopt;
+    simplex.push(next, std::move(pa), std::move(pb));
+  }
+  return std::nullopt;
+}
+
+/// The unit of the points the certificate starts from (the hint's, and the pair (0, 0)): the
+/// finest unit in which each of their coordinates is an integer. Points found later may need
+/// a finer one (FrameTooCoarse).
+long starting_exponent(std::span<const Vec3> a, std::span<const Vec3> b, const DistanceHint& hint) {
+  long lowest = std::numeric_limits<long>::max();
+  const auto take = [&](const Vec3& p) {
+    for (int i = 0; i < 3; ++i)
+      if (p[i] != 0) lowest = std::min(lowest, detail::base_exponent(p[i]));
+  };
+  take(a[0]);
+  take(b[0]);
+  for (const IndexPair& p : hint.simplex)
+    if (in_range(p.a, a.size()) && in_range(p.b, b.size())) {
+      take(a[p.a]);
+      take(b[p.b]);
+    }
+  return lowest == std::numeric_limits<long>::max() ? 0 : lowest;
+}
+
+/// Frame refinements tried before the clouds' own frame (integer_frame, one pass over every
+/// coordinate, in which every point is integral) is used.
+constexpr int kFrameRefinements = 8;
+
+/// certify_in_frame in the coarsest unit that works: the starting points' unit, refined each
+/// time a point needs a finer one.
+template <class I>
+std::optional<DistanceCertificate> certify_with(std::span<const Vec3> a, std::span<const Vec3> b,
+                                                const DistanceHint& hint, int max_steps) {
+  long exponent = starting_exponent(a, b, hint);
+  for (int attempt = 0; attempt < kFrameRefinements; ++attempt) {
+    try {
+      return certify_in_frame<I>(a, b, hint, max_steps, exponent);
+    } catch (const detail::FrameTooCoarse& finer) {
+      exponent = finer.exponent;  // strictly lower: a point was not integral in the old unit
+    }
+  }
+  return certify_in_frame<I>(a, b, hint, max_steps, detail::integer_frame(a, b).exponent);
 }
 
 }  // namespace
@@ -206,45 +346,13 @@ std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
                                                     std::span<const Vec3> b,
                                                     const DistanceHint& hint, int max_steps) {
   if (a.empty() || b.empty()) return std::nullopt;
-  const detail::IntegerFrame frame = detail::integer_frame(a, b);
-  ExactSimplex simplex = starting_simplex(a, b, hint, frame.exponent);
-  for (int step = 0; step <= max_steps; ++step) {
-    const std::optional<ExactClosest> c = closest_on_hull(simplex.w);
-    if (!c) return std::nullopt;
-    const auto finish = [&](bool intersect) {
-      DistanceCertificate out;
-      out.intersect = intersect;
-      out.witness_a = nearest_combination(*c, simplex.a, frame.exponent);
-      out.witness_b = nearest_combination(*c, simplex.b, frame.exponent);
-      simplex.keep(c->subset);
-      detail::Mpq d2;
-      if (!intersect) squared_length(c->numerator, c->denominator, frame.exponent, d2.get());
-      out.distance_squared = detail::to_rational(d2.get());
-      out.distance = detail::nearest_sqrt(d2.get());
-      out.feature.simplex = simplex.pairs;
-      out.repair_steps = step;
-      return out;
-    };
-    if (detail::is_zero(c->numerator)) return finish(true);  // the origin is in the hull
-
-    // Separated iff min over a of N·A − max over b of N·B ≥ N·N / D.
-    const detail::Extreme low = detail::extreme_point(a, c->numerator, frame, false);
-    const detail::Extreme high = detail::extreme_point(b, c->numerator, frame, true);
-    if (c->denominator * (low.value - high.value) >= dot(c->numerator, c->numerator))
-      return finish(false);
-
-    // Not the closest point: continue from its sub-simplex and the violating support point.
-    const IndexPair next{static_cast<std::int32_t>(low.index),
-                         static_cast<std::int32_t>(high.index)};
-    IntVec pa = detail::to_integer(a[low.index], frame.exponent);
-    IntVec pb = detail::to_integer(b[high.index], frame.exponent);
-    simplex.keep(c->subset);
-    // In exact arithmetic the new point violates the test, so it is not in the simplex and
-    // the distance strictly decreases; a repeat would mean a bug, and is never an answer.
-    if (simplex.contains(pa - pb) || simplex.pairs.size() >= 4) return std::nullopt;
-    simplex.push(next, std::move(pa), std::move(pb));
+  try {
+    return certify_with<Wide>(a, b, hint, max_steps);
+  } catch (const detail::WideOverflow&) {
+    // The integers outgrew the fixed width (coordinates of very different magnitudes): the
+    // same steps with GMP integers, which give the same answer.
   }
-  return std::nullopt;
+  return certify_with<Int>(a, b, hint, max_steps);
 }
 
 }  // namespace gjklab::exact
