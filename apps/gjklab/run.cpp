@@ -87,8 +87,9 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& args) {
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   cmd->add_option("--checkpoint", args.checkpoint,
                   "cases between checkpoints (default " +
-                      std::to_string(experiment::kDefaultCheckpointCases) +
-                      "): at most this much work is lost if the run is killed")
+                      std::to_string(experiment::kDefaultCheckpointCases) + ", " +
+                      std::to_string(experiment::kDistributedRoundCases) +
+                      " under mpirun): at most this much work is lost if the run is killed")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 30));
   return cmd;
 }
@@ -156,7 +157,10 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
     speaks = !ranks || ranks->rank() == 0;
     experiment::RunOptions options;
     if (args.stop_after > 0) options.stop_after = args.stop_after;
-    if (args.checkpoint > 0) options.checkpoint_cases = args.checkpoint;
+    if (args.checkpoint > 0)
+      options.checkpoint_cases = args.checkpoint;
+    else if (ranks)
+      options.checkpoint_cases = experiment::kDistributedRoundCases;
     if (args.threads > 0) options.threads = args.threads;
     options.progress = speaks ? &err : nullptr;
     options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);

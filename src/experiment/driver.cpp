@@ -263,6 +263,7 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
   const auto start = Clock::now();
   const auto rounds =
       make_rounds(config, threads, options.ranks, [stop = options.stop] { return stop && *stop; });
+  const std::uint64_t first_written = first;
 
   auto record = [&](std::span<const CaseResult> results) {
     if (!writer) return;
@@ -275,6 +276,13 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
   auto finish = [&](std::uint64_t written, bool complete) {
     progress.update(written, true);
     if (writer) writer->finish(utc_now(), complete);
+    if (options.ranks && writer && options.progress && written > first_written)
+      // The job's serial part: no number of ranks delivers cases faster than rank 0 takes them.
+      *options.progress << "rank 0 took " << written - first_written << " cases in "
+                        << rounds->writer_seconds() << " s of decoding and writing ("
+                        << static_cast<double>(written - first_written) /
+                               std::max(rounds->writer_seconds(), 1e-9)
+                        << " cases/s at most for any number of ranks)\n";
     report.output = complete || !writer
                         ? std::filesystem::path(options.output.value_or(config.output))
                         : writer->temporary_path();

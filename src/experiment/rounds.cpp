@@ -89,6 +89,8 @@ class DistributedRounds final : public RoundSource {
     rank0_fraction_ = 1.0 / ranks_.size();
   }
 
+  double writer_seconds() const override { return writer_seconds_; }
+
   Round next(std::uint64_t first, std::uint64_t count) override {
     // On rank 0 the time since the last round is what it spent writing that round.
     const double writing = last_return_ ? seconds_since(*last_return_) : 0.0;
@@ -106,7 +108,11 @@ class DistributedRounds final : public RoundSource {
     mine.done.clear();
     Round round;
     Decision decision;
-    if (ranks_.rank() == 0) decision = decide(parts, round, count, writing);
+    if (ranks_.rank() == 0) {
+      const auto decoding = Clock::now();
+      decision = decide(parts, round, count, writing);
+      writer_seconds_ += writing + seconds_since(decoding);
+    }
     apply(ranks_.broadcast(encode_decision(decision)));
     round.stop = decision_.kind == Decision::stop;
     last_return_ = Clock::now();
@@ -160,6 +166,7 @@ class DistributedRounds final : public RoundSource {
   double rank0_fraction_;
   Decision decision_;
   std::optional<Clock::time_point> last_return_;
+  double writer_seconds_ = 0;
   // Seconds per case on rank 0 and on the others, from the last round that measured them.
   double rank0_case_seconds_ = 0, other_case_seconds_ = 0;
 };
