@@ -57,6 +57,8 @@ class ByteReader {
     return s;
   }
   bool done() const { return at_ == bytes_.size(); }
+  /// Bytes read so far: where the rest of the message starts.
+  std::size_t position() const { return at_; }
 
  private:
   void need(std::uint64_t n) const {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -40,35 +41,51 @@ class LocalRounds final : public RoundSource {
   StopCheck stopping_;
 };
 
-/// What one rank sends rank 0 after its share of a round.
+/// What one rank sends rank 0 after its share of a round: a header, then its results.
 struct ShareReport {
-  bool stop = false;             ///< its stop flag was set
-  std::uint64_t planned = 0;     ///< cases in its share
-  double seconds = 0;            ///< time spent evaluating them
-  std::string error;             ///< non-empty when a case failed
-  std::vector<CaseResult> done;  ///< its finished cases, a prefix of its share
+  bool stop = false;           ///< its stop flag was set
+  std::uint64_t planned = 0;   ///< cases in its share
+  std::uint64_t finished = 0;  ///< cases finished, the first of its share
+  double seconds = 0;          ///< time spent evaluating them
+  std::string error;           ///< non-empty when a case failed
+  std::size_t results_at = 0;  ///< where its results start in the message
 };
 
-std::string encode_share(const ShareReport& s) {
+/// Rank 0 sends no results: it keeps its own.
+std::string encode_share(const ShareReport& s, std::span<const CaseResult> done) {
   codec::ByteWriter out;
   out.put<std::uint8_t>(s.stop);
   out.put<std::uint64_t>(s.planned);
+  out.put<std::uint64_t>(s.finished);
   out.put<double>(s.seconds);
   out.put_string(s.error);
-  if (s.error.empty()) codec::encode_results(out, s.done);
+  codec::encode_results(out, done);
   return out.take();
 }
 
-ShareReport decode_share(const std::string& bytes) {
+/// The header alone: rank 0 decides on it and tells the other ranks before it decodes the
+/// results, so that they start the next round without waiting for that.
+ShareReport decode_share_header(const std::string& bytes) {
   codec::ByteReader in(bytes);
   ShareReport s;
   s.stop = in.get<std::uint8_t>() != 0;
   s.planned = in.get<std::uint64_t>();
+  s.finished = in.get<std::uint64_t>();
   s.seconds = in.get<double>();
   s.error = in.get_string();
-  if (s.error.empty()) s.done = codec::decode_results(in);
-  if (!in.done()) throw std::runtime_error("malformed result message: trailing bytes");
+  s.results_at = in.position();
+  if (s.finished > s.planned)
+    throw std::runtime_error("malformed result message: more cases finished than planned");
   return s;
+}
+
+std::vector<CaseResult> decode_share_results(const std::string& bytes, const ShareReport& s) {
+  codec::ByteReader in(std::string_view(bytes).substr(s.results_at));
+  std::vector<CaseResult> done = codec::decode_results(in);
+  if (!in.done() || done.size() != s.finished)
+    throw std::runtime_error("malformed result message: " + std::to_string(done.size()) +
+                             " results for " + std::to_string(s.finished) + " finished cases");
+  return done;
 }
 
 /// Rank 0's decision after a round, sent to every rank.
@@ -95,26 +112,32 @@ class DistributedRounds final : public RoundSource {
     // On rank 0 the time since the last round is what it spent writing that round.
     const double writing = last_return_ ? seconds_since(*last_return_) : 0.0;
     const auto [begin, size] = share(ranks_.rank(), first, count);
-    ShareReport mine{false, size, 0, {}, {}};
+    ShareReport mine{false, size, 0, 0, {}, 0};
+    std::vector<CaseResult> done;
     const auto start = Clock::now();
     try {
-      mine.done = evaluate_range(config_, threads_, begin, size, stopping_);
+      done = evaluate_range(config_, threads_, begin, size, stopping_);
     } catch (const std::exception& e) {
       mine.error = e.what();
     }
     mine.seconds = seconds_since(start);
+    mine.finished = done.size();
     mine.stop = stopping_();
-    std::vector<std::string> parts = ranks_.gather(encode_share(mine));
-    mine.done.clear();
-    Round round;
+    const bool writes = ranks_.rank() == 0;
+    const std::vector<std::string> parts =
+        ranks_.gather(encode_share(mine, writes ? std::span<const CaseResult>() : done));
+    const auto decoding = Clock::now();
+    std::vector<ShareReport> shares;
     Decision decision;
-    if (ranks_.rank() == 0) {
-      const auto decoding = Clock::now();
-      decision = decide(parts, round, count, writing);
+    if (writes) decision = decide(parts, shares, count, writing);
+    apply(ranks_.broadcast(encode_decision(decision)));
+    Round round;
+    round.stop = decision_.kind == Decision::stop;
+    if (writes) {
+      round.results = std::move(done);
+      collect(parts, shares, round.results);
       writer_seconds_ += writing + seconds_since(decoding);
     }
-    apply(ranks_.broadcast(encode_decision(decision)));
-    round.stop = decision_.kind == Decision::stop;
     last_return_ = Clock::now();
     return round;
   }
@@ -135,8 +158,10 @@ class DistributedRounds final : public RoundSource {
     return {begin, base + (k < extra ? 1 : 0)};
   }
 
-  Decision decide(const std::vector<std::string>& parts, Round& round, std::uint64_t count,
-                  double writing);
+  Decision decide(const std::vector<std::string>& parts, std::vector<ShareReport>& shares,
+                  std::uint64_t count, double writing);
+  void collect(const std::vector<std::string>& parts, const std::vector<ShareReport>& shares,
+               std::vector<CaseResult>& results) const;
   void rebalance(const std::vector<ShareReport>& shares, std::uint64_t count, double writing);
 
   static std::string encode_decision(const Decision& d) {
@@ -171,29 +196,38 @@ class DistributedRounds final : public RoundSource {
   double rank0_case_seconds_ = 0, other_case_seconds_ = 0;
 };
 
-Decision DistributedRounds::decide(const std::vector<std::string>& parts, Round& round,
-                                   std::uint64_t count, double writing) {
+Decision DistributedRounds::decide(const std::vector<std::string>& parts,
+                                   std::vector<ShareReport>& shares, std::uint64_t count,
+                                   double writing) {
   Decision d;
-  std::vector<ShareReport> shares;
   try {
     for (const std::string& part : parts)
-      shares.push_back(decode_share(part));
+      shares.push_back(decode_share_header(part));
   } catch (const std::exception& e) {
     return {Decision::failed, 0, e.what()};
   }
-  bool whole = true;  // every rank so far finished its whole share
   for (std::size_t r = 0; r < shares.size(); ++r) {
-    ShareReport& s = shares[r];
-    if (!s.error.empty())
-      return {Decision::failed, 0, (r == 0 ? "" : "rank " + std::to_string(r) + ": ") + s.error};
-    if (s.stop) d.kind = Decision::stop;
-    if (!whole) continue;
-    whole = s.done.size() == s.planned;
-    std::move(s.done.begin(), s.done.end(), std::back_inserter(round.results));
+    if (!shares[r].error.empty())
+      return {Decision::failed, 0,
+              (r == 0 ? "" : "rank " + std::to_string(r) + ": ") + shares[r].error};
+    if (shares[r].stop) d.kind = Decision::stop;
   }
   rebalance(shares, count, writing);
   d.rank0_fraction = rank0_fraction_;
   return d;
+}
+
+/// Appends the other ranks' finished cases to rank 0's, in rank order up to the first rank
+/// that did not finish its share: the round's finished prefix.
+void DistributedRounds::collect(const std::vector<std::string>& parts,
+                                const std::vector<ShareReport>& shares,
+                                std::vector<CaseResult>& results) const {
+  if (shares.empty() || shares[0].finished < shares[0].planned) return;
+  for (std::size_t r = 1; r < shares.size(); ++r) {
+    std::vector<CaseResult> done = decode_share_results(parts[r], shares[r]);
+    std::move(done.begin(), done.end(), std::back_inserter(results));
+    if (shares[r].finished < shares[r].planned) return;
+  }
 }
 
 /// Sizes rank 0's next share so that its cases plus its writing take as long as another
