@@ -1,5 +1,6 @@
 #include "gjklab/geometry/polytope.hpp"
 
+#include <immintrin.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -23,25 +24,258 @@ std::string describe_invalid_cloud(std::span<const Vec3> cloud) {
 
 namespace {
 
-/// The mean and box of a cloud, checked: one pass (the constructor's cost is what a query on
-/// fresh arrays pays) for the finiteness check, the mean's sum (in vertex order) and the box,
-/// in locals the compiler keeps in registers. The message of an invalid cloud is made only
-/// when it is.
+/// A cloud's mean and box, from the pass that also lays out its blocks.
 struct CloudMeasures {
   Vec3 mean, lower, upper;
 };
-CloudMeasures measure(std::span<const Vec3> cloud) {
-  if (cloud.empty()) throw InvalidGeometry(describe_invalid_cloud(cloud));
-  Vec3 sum = Vec3::Zero(), lower = cloud[0], upper = cloud[0];
-  bool finite = true;
-  for (const Vec3& v : cloud) {
-    finite &= is_finite(v);
-    sum += v;
-    lower = lower.cwiseMin(v);
-    upper = upper.cwiseMax(v);
+
+/// A point in two SSE2 registers: (x, y) and (z, 0). Every x86-64 processor has SSE2; its
+/// lane arithmetic is IEEE double arithmetic, so each lane computes what the scalar code would.
+struct Point2 {
+  __m128d xy, z;
+};
+
+/// Point i of rows of any strides; the bytes are copied, so no alignment is assumed.
+struct StridedRows {
+  const char* data;
+  std::ptrdiff_t row, column;  // bytes
+  [[gnu::always_inline]] Point2 operator()(std::size_t i) const {
+    const char* p = data + static_cast<std::ptrdiff_t>(i) * row;
+    double x, y, z;
+    std::memcpy(&x, p, sizeof x);
+    std::memcpy(&y, p + column, sizeof y);
+    std::memcpy(&z, p + 2 * column, sizeof z);
+    return {_mm_set_pd(y, x), _mm_set_sd(z)};
   }
-  if (!finite) throw InvalidGeometry(describe_invalid_cloud(cloud));
-  return {sum / static_cast<double>(cloud.size()), lower, upper};
+  static constexpr bool kContiguous = false;
+};
+
+/// Point i of contiguous rows (a C-contiguous n×3 array, or a std::vector<Vec3>'s storage).
+struct ContiguousRows {
+  const char* data;
+  [[gnu::always_inline]] Point2 operator()(std::size_t i) const {
+    const double* p = reinterpret_cast<const double*>(data + 3 * sizeof(double) * i);
+    return {_mm_loadu_pd(p), _mm_load_sd(p + 2)};
+  }
+  static constexpr bool kContiguous = true;
+};
+
+/// The running measures of one pass, in registers. The sum's order fixes its bits: it is
+/// taken from zero, point after point (as Vec3 += would). The box takes std::min / std::max
+/// semantics (min_pd(v, m) is v < m ? v : m, as std::min(m, v)); its bounds' values do not
+/// depend on the order, and fix_zero_signs settles the one thing that would. The z registers'
+/// upper lanes are unused.
+struct Running {
+  __m128d sxy = _mm_setzero_pd(), sz = _mm_setzero_pd();
+  __m128d lxy, lz, hxy, hz;
+  explicit Running(const Point2& first) : lxy(first.xy), lz(first.z), hxy(lxy), hz(lz) {}
+  [[gnu::always_inline]] void take(const Point2& v) {
+    sxy = _mm_add_pd(sxy, v.xy);
+    sz = _mm_add_sd(sz, v.z);
+    lxy = _mm_min_pd(v.xy, lxy);
+    lz = _mm_min_sd(v.z, lz);
+    hxy = _mm_max_pd(v.xy, hxy);
+    hz = _mm_max_sd(v.z, hz);
+  }
+  static Vec3 vec(__m128d xy, __m128d z) {
+    return Vec3(_mm_cvtsd_f64(xy), _mm_cvtsd_f64(_mm_unpackhi_pd(xy, xy)), _mm_cvtsd_f64(z));
+  }
+};
+
+/// Writes point v as lane l of block b.
+[[gnu::always_inline]] inline void to_block(const Point2& v, Polytope::Block& b, int l) {
+  _mm_storel_pd(&b.x[l], v.xy);
+  _mm_storeh_pd(&b.y[l], v.xy);
+  _mm_store_sd(&b.z[l], v.z);
+}
+
+/// Writes point v to *out.
+[[gnu::always_inline]] inline void to_vertex(const Point2& v, Vec3* out) {
+  _mm_storeu_pd(out->data(), v.xy);
+  _mm_store_sd(out->data() + 2, v.z);
+}
+
+/// The box's bounds as point-after-point std::min / std::max give them. Two doubles that
+/// compare equal are the same double, except +0 and −0; so a bound found in another order has
+/// the right value, and only a zero bound may have the wrong sign. Point after point, the bound
+/// is the coordinate of the first point that attains it (before it every value is strictly
+/// beyond it, after it none is): for a zero bound, that point is looked up.
+template <class Rows>
+void fix_zero_signs(const Rows& rows, std::size_t n, CloudMeasures& m) {
+  for (Vec3* bound : {&m.lower, &m.upper}) {
+    for (int c = 0; c < 3; ++c) {
+      if ((*bound)[c] != 0) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        const Point2 v = rows(i);
+        if (const double x = Running::vec(v.xy, v.z)[c]; x == 0) {
+          (*bound)[c] = x;
+          break;
+        }
+      }
+    }
+  }
+}
+
+/// The pass from block `first_block` on, continuing `r` (the blocks before it done by the
+/// AVX2 kernel below): copies the points to `out` (kCopy; else the points are already there),
+/// fills the scan's blocks (the last padded with the last point) and measures the cloud.
+/// Finiteness costs nothing per point: a NaN or infinite coordinate makes its sum NaN or
+/// infinite for good, so only a cloud whose sum is not finite (that, or an overflow) is
+/// searched for the point to name. `out` must not overlap the points.
+template <bool kCopy, class Rows>
+[[gnu::always_inline]] inline CloudMeasures fill(const Rows& rows, std::size_t n, Vec3* out,
+                                                 Polytope::Block* blocks, std::size_t first_block,
+                                                 Running r) {
+  constexpr int kB = Polytope::kBlock;
+  const std::size_t full = n / kB;
+  for (std::size_t k = first_block; k < full; ++k) {
+    Polytope::Block& b = blocks[k];
+    const std::size_t i = k * kB;
+    for (int l = 0; l < kB; ++l) {
+      const Point2 v = rows(i + static_cast<std::size_t>(l));
+      to_block(v, b, l);
+      if constexpr (kCopy && !Rows::kContiguous) to_vertex(v, out + i + l);
+      r.take(v);
+    }
+    // Contiguous rows are Vec3's layout: the block's points are copied whole.
+    if constexpr (kCopy && Rows::kContiguous)
+      std::memcpy(static_cast<void*>(out + i), rows.data + 3 * sizeof(double) * i,
+                  kB * sizeof(Vec3));
+  }
+  if (full * kB < n) {  // the last block, padded with copies of the last point
+    Polytope::Block& b = blocks[full];
+    for (int l = 0; l < kB; ++l) {
+      const std::size_t i = full * kB + static_cast<std::size_t>(l);
+      const Point2 v = rows(std::min(i, n - 1));
+      to_block(v, b, l);
+      if (i < n) {
+        if constexpr (kCopy) to_vertex(v, out + i);
+        r.take(v);
+      }
+    }
+  }
+  const Vec3 sum = Running::vec(r.sxy, r.sz);
+  if (!is_finite(sum)) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 v = rows(i);
+      if (!Running::vec(v.xy, v.z).allFinite())
+        throw InvalidGeometry("non-finite coordinate in point " + std::to_string(i));
+    }
+  }
+  // The mean divided by n, not multiplied by 1/n: as Vec3 / double.
+  CloudMeasures m{sum / static_cast<double>(n), Running::vec(r.lxy, r.lz),
+                  Running::vec(r.hxy, r.hz)};
+  fix_zero_signs(rows, n, m);
+  return m;
+}
+
+/// The blocks' rows of four contiguous points m0 = (x0 y0 z0 x1), m1 = (y1 z1 x2 y2),
+/// m2 = (z2 x3 y3 z3): two blends and one permutation per row. The box takes the rows before
+/// their permutation (lane order does not matter to its values; see `fix_zero_signs`).
+[[gnu::target("avx2"), gnu::always_inline]] inline void transpose4(__m256d m0, __m256d m1,
+                                                                   __m256d m2, double* x, double* y,
+                                                                   double* z, __m256d lo[3],
+                                                                   __m256d hi[3]) {
+  // (x0 x3 x2 x1), (y1 y0 y3 y2), (z2 z1 z0 z3), then into order.
+  const __m256d rows[3] = {_mm256_blend_pd(_mm256_blend_pd(m0, m1, 0b0100), m2, 0b0010),
+                           _mm256_blend_pd(_mm256_blend_pd(m0, m1, 0b1001), m2, 0b0100),
+                           _mm256_blend_pd(_mm256_blend_pd(m0, m1, 0b0010), m2, 0b1001)};
+  for (int c = 0; c < 3; ++c) {
+    lo[c] = _mm256_min_pd(rows[c], lo[c]);
+    hi[c] = _mm256_max_pd(rows[c], hi[c]);
+  }
+  _mm256_store_pd(x, _mm256_permute4x64_pd(rows[0], 0b01101100));  // lanes 0 3 2 1
+  _mm256_store_pd(y, _mm256_permute4x64_pd(rows[1], 0b10110001));  // lanes 1 0 3 2
+  _mm256_store_pd(z, _mm256_permute4x64_pd(rows[2], 0b11000110));  // lanes 2 1 0 3
+}
+
+/// The smallest / largest of four lanes (as values: a zero's sign is fixed later).
+[[gnu::target("avx2"), gnu::always_inline]] inline double lanes_min(__m256d v) {
+  const __m128d h = _mm_min_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+  return _mm_cvtsd_f64(_mm_min_sd(h, _mm_unpackhi_pd(h, h)));
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline double lanes_max(__m256d v) {
+  const __m128d h = _mm_max_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+  return _mm_cvtsd_f64(_mm_max_sd(h, _mm_unpackhi_pd(h, h)));
+}
+
+/// AVX2 (no FMA: nothing here multiplies) for blocks [0, count) of contiguous points, where
+/// the point after the last of them exists: each point is read as four doubles (x y z and the
+/// next x, which the sum ignores), so its sum is one instruction in vertex order; a block is
+/// transposed in registers, and the box taken on its rows, lane by lane. Continues and returns
+/// r. The sum's additions depend each on the last (about 0.45 ns per point, the floor of this
+/// pass); the loads, shuffles, box and stores run beside them.
+template <bool kCopy>
+[[gnu::target("avx2")]] Running fill_blocks_avx2(const double* p, std::size_t count, Vec3* out,
+                                                 Polytope::Block* blocks, Running r) {
+  __m256d sum = _mm256_set_m128d(r.sz, r.sxy);
+  const Vec3 l = Running::vec(r.lxy, r.lz), h = Running::vec(r.hxy, r.hz);
+  __m256d lo[3], hi[3];
+  for (int c = 0; c < 3; ++c) {
+    lo[c] = _mm256_set1_pd(l[c]);
+    hi[c] = _mm256_set1_pd(h[c]);
+  }
+  for (std::size_t k = 0; k < count; ++k, p += 3 * Polytope::kBlock) {
+    for (int j = 0; j < Polytope::kBlock; ++j)
+      sum = _mm256_add_pd(sum, _mm256_loadu_pd(p + 3 * j));
+    const __m256d m[6] = {_mm256_loadu_pd(p),      _mm256_loadu_pd(p + 4),
+                          _mm256_loadu_pd(p + 8),  _mm256_loadu_pd(p + 12),
+                          _mm256_loadu_pd(p + 16), _mm256_loadu_pd(p + 20)};
+    Polytope::Block& b = blocks[k];
+    transpose4(m[0], m[1], m[2], b.x, b.y, b.z, lo, hi);
+    transpose4(m[3], m[4], m[5], b.x + 4, b.y + 4, b.z + 4, lo, hi);
+    if constexpr (kCopy) {
+      double* o = (out + k * Polytope::kBlock)->data();
+      for (int j = 0; j < 6; ++j)
+        _mm256_storeu_pd(o + 4 * j, m[j]);
+    }
+  }
+  r.sxy = _mm256_castpd256_pd128(sum);
+  r.sz = _mm256_extractf128_pd(sum, 1);
+  r.lxy = _mm_set_pd(lanes_min(lo[1]), lanes_min(lo[0]));
+  r.lz = _mm_set_sd(lanes_min(lo[2]));
+  r.hxy = _mm_set_pd(lanes_max(hi[1]), lanes_max(hi[0]));
+  r.hz = _mm_set_sd(lanes_max(hi[2]));
+  return r;
+}
+
+bool has_avx2() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+}
+
+/// The pass over contiguous points: the AVX2 kernel where the processor has it, for the blocks
+/// whose points it may read four doubles at a time, then the SSE2 pass for the rest.
+template <bool kCopy>
+CloudMeasures fill_contiguous(const char* data, std::size_t n, Vec3* out, Polytope::Block* blocks) {
+  static const bool avx2 = has_avx2();  // local: polytopes may be built during static init
+  const ContiguousRows rows{data};
+  Running r(rows(0));
+  // Blocks [0, m) hold points up to 8m − 1, and point 8m must exist: m = (n − 1) / 8.
+  const std::size_t m = avx2 ? (n - 1) / Polytope::kBlock : 0;
+  if (m > 0) r = fill_blocks_avx2<kCopy>(reinterpret_cast<const double*>(data), m, out, blocks, r);
+  return fill<kCopy>(rows, n, out, blocks, m, r);
+}
+
+CloudMeasures fill_strided(const CoordinateRows& rows, Vec3* out, Polytope::Block* blocks) {
+  const StridedRows points{static_cast<const char*>(rows.data), rows.row_stride,
+                           rows.column_stride};
+  return fill<true>(points, rows.count, out, blocks, 0, Running(points(0)));
+}
+
+/// Fills `vertices` and `blocks` (resized, their capacity reused) from rows, and measures.
+CloudMeasures fill_from(const CoordinateRows& rows, std::vector<Vec3>& vertices,
+                        std::vector<Polytope::Block>& blocks) {
+  if (rows.count == 0) throw InvalidGeometry(describe_invalid_cloud({}));
+  vertices.resize(rows.count);
+  blocks.resize((rows.count + Polytope::kBlock - 1) / Polytope::kBlock);
+  // The fast path reads doubles in place, so it also needs them aligned (NumPy's may not be).
+  const bool contiguous = rows.row_stride == static_cast<std::ptrdiff_t>(3 * sizeof(double)) &&
+                          rows.column_stride == static_cast<std::ptrdiff_t>(sizeof(double)) &&
+                          reinterpret_cast<std::uintptr_t>(rows.data) % alignof(double) == 0;
+  return contiguous ? fill_contiguous<true>(static_cast<const char*>(rows.data), rows.count,
+                                            vertices.data(), blocks.data())
+                    : fill_strided(rows, vertices.data(), blocks.data());
 }
 
 // ---- the blocked scan --------------------------------------------------------------------
@@ -195,11 +429,6 @@ using ScanPairFunction = ScanPairAnswer (*)(const Polytope::Block*, std::size_t,
                                             const Polytope::Block*, std::size_t, double, double,
                                             double);
 
-bool has_avx2() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-}
-
 const ScanFunction scan = has_avx2() ? scan_avx2 : scan_default;
 const ScanPairFunction scan_pair = has_avx2() ? scan_pair_avx2 : scan_pair_default;
 
@@ -212,16 +441,44 @@ namespace {
 std::atomic<std::uint64_t> next_polytope_id{1};
 }  // namespace
 
-Polytope::Polytope(std::vector<Vec3> vertices)
-    : vertices_(std::move(vertices)),
-      id_(next_polytope_id.fetch_add(1, std::memory_order_relaxed)) {
-  const CloudMeasures m = measure(vertices_);
-  mean_ = m.mean;
-  box_lower_ = m.lower;
-  box_upper_ = m.upper;
+Polytope::Polytope(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
+  if (vertices_.empty()) throw InvalidGeometry(describe_invalid_cloud(vertices_));
+  blocks_.resize((vertices_.size() + kBlock - 1) / kBlock);
+  // The points are read where they are: nothing to copy.
+  const CloudMeasures m = fill_contiguous<false>(reinterpret_cast<const char*>(vertices_.data()),
+                                                 vertices_.size(), nullptr, blocks_.data());
+  take_measures(m.mean, m.lower, m.upper);
+}
+
+Polytope::Polytope(const CoordinateRows& rows) {
+  const CloudMeasures m = fill_from(rows, vertices_, blocks_);
+  take_measures(m.mean, m.lower, m.upper);
+}
+
+void Polytope::assign(const CoordinateRows& rows) {
+  graph_.reset();
+  start_table_.clear();
+  table_resolution_ = 1;
+  hint_.store(0, std::memory_order_relaxed);
+  try {
+    const CloudMeasures m = fill_from(rows, vertices_, blocks_);
+    take_measures(m.mean, m.lower, m.upper);
+  } catch (const InvalidGeometry&) {
+    // Left valid: the point at the origin (no allocation: one point fits what was there).
+    const Vec3 origin = Vec3::Zero();
+    const CloudMeasures m = fill_from(CoordinateRows{origin.data(), 1}, vertices_, blocks_);
+    take_measures(m.mean, m.lower, m.upper);
+    throw;
+  }
+}
+
+void Polytope::take_measures(const Vec3& mean, const Vec3& lower, const Vec3& upper) {
+  mean_ = mean;
+  box_lower_ = lower;
+  box_upper_ = upper;
   box_extent_ = (box_upper_ - box_lower_).maxCoeff();
   max_magnitude_ = std::max(box_lower_.cwiseAbs().maxCoeff(), box_upper_.cwiseAbs().maxCoeff());
-  build_blocks();
+  id_ = next_polytope_id.fetch_add(1, std::memory_order_relaxed);
 }
 
 Polytope::Polytope(const Polytope& other)
@@ -289,30 +546,6 @@ Polytope& Polytope::operator=(Polytope&& other) noexcept {
 }
 
 Polytope::~Polytope() = default;
-
-void Polytope::build_blocks() {
-  const std::size_t n = vertices_.size();
-  blocks_.resize((n + kBlock - 1) / kBlock);
-  const std::size_t full = n / kBlock;
-  for (std::size_t k = 0; k < full; ++k) {
-    Block& b = blocks_[k];
-    const Vec3* v = vertices_.data() + k * kBlock;
-    for (int l = 0; l < kBlock; ++l) {
-      b.x[l] = v[l].x();
-      b.y[l] = v[l].y();
-      b.z[l] = v[l].z();
-    }
-  }
-  if (full < blocks_.size()) {  // the last block, padded with copies of the last vertex
-    Block& b = blocks_[full];
-    for (int l = 0; l < kBlock; ++l) {
-      const Vec3& v = vertices_[std::min(full * kBlock + l, n - 1)];
-      b.x[l] = v.x();
-      b.y[l] = v.y();
-      b.z[l] = v.z();
-    }
-  }
-}
 
 std::size_t Polytope::scan_support_index(const Vec3& d) const {
   // The textbook loop starts from vertex 0's dot product; if that is NaN nothing compares

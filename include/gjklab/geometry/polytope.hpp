@@ -22,6 +22,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -40,6 +41,17 @@ class InvalidGeometry : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// n points stored as rows of three doubles, as in a NumPy n×3 float64 array of any strides:
+/// coordinate k of point i is the double at byte offset i·row_stride + k·column_stride from
+/// `data` (no alignment assumed). The default strides are those of a C-contiguous array, which
+/// is also the layout of a std::vector<Vec3>.
+struct CoordinateRows {
+  const void* data = nullptr;
+  std::size_t count = 0;
+  std::ptrdiff_t row_stride = 3 * sizeof(double);  ///< bytes
+  std::ptrdiff_t column_stride = sizeof(double);   ///< bytes
+};
+
 /// Vertex counts from which hill climbing beats the blocked scan on the machines measured
 /// (see bench/ and `gjklab bench --suite random`); callers decide, this is a suggestion.
 inline constexpr std::size_t kHillClimbingMinVertices = 128;
@@ -48,6 +60,15 @@ class Polytope {
  public:
   /// Throws InvalidGeometry if the cloud is empty or has a NaN or infinite coordinate.
   explicit Polytope(std::vector<Vec3> vertices);
+  /// The polytope of the points in `rows`, read in one pass that copies them, lays out the
+  /// scan's blocks and takes the measures: bit for bit the polytope that the constructor above
+  /// builds from the same points, with the same InvalidGeometry.
+  explicit Polytope(const CoordinateRows& rows);
+  /// *this = Polytope(rows), in this polytope's own storage: no allocation when it already held
+  /// at least as many points (for callers that build many short-lived polytopes, such as a query
+  /// on arrays). The result has a new id() and uses the full scan. If it throws InvalidGeometry,
+  /// the polytope is left as the single point at the origin (valid, with a new id()).
+  void assign(const CoordinateRows& rows);
 
   std::span<const Vec3> vertices() const { return vertices_; }
   std::size_t size() const { return vertices_.size(); }
@@ -125,8 +146,9 @@ class Polytope {
 
  private:
   std::size_t climb_support_index(const Vec3& d) const;
-  void build_blocks();
   void build_start_table();
+  /// The measures (mean, box, extent, magnitude) from a pass's results, and a new id.
+  void take_measures(const Vec3& mean, const Vec3& lower, const Vec3& upper);
 
   std::vector<Vec3> vertices_;
   std::vector<Block> blocks_;
