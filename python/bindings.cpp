@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <iostream>
@@ -51,11 +52,18 @@ std::string shape_text(const py::array& array) {
   return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
-/// A cloud from an n×3 float64 NumPy array (any strides, so slices and transposes work) or
-/// from anything numpy.asarray turns into float64 numbers (nested lists). Other dtypes are
-/// refused rather than converted: a float32 or integer array is usually a mistake upstream, and
-/// GJK's answers depend on every bit of the input. Then the checks of `gjklab query --cases`.
-std::vector<Vec3> cloud_from(const py::handle& object, const char* name) {
+/// An n×3 float64 NumPy array (any strides, so slices and transposes work) from the array or
+/// from anything numpy.asarray turns into float64 numbers (nested lists), and its rows. Other
+/// dtypes are refused rather than converted: a float32 or integer array is usually a mistake
+/// upstream, and GJK's answers depend on every bit of the input. The array is kept alive with
+/// the rows. An empty cloud is refused here with the message of `gjklab query --cases`; the
+/// other checks of a cases line (finite coordinates) are made where the polytope is built.
+struct CloudArray {
+  py::array array;
+  CoordinateRows rows;
+};
+
+CloudArray cloud_array(const py::handle& object, const char* name) {
   py::array array;
   if (py::isinstance<py::array>(object)) {
     array = py::reinterpret_borrow<py::array>(object);
@@ -77,13 +85,44 @@ std::vector<Vec3> cloud_from(const py::handle& object, const char* name) {
   if (array.ndim() != 2 || array.shape(1) != 3)
     throw py::value_error(std::string("cloud ") + name + ": expected an n×3 array, got shape " +
                           shape_text(array));
-  const auto typed = py::reinterpret_borrow<py::array_t<double>>(array);
-  const auto view = typed.unchecked<2>();
-  std::vector<Vec3> cloud(static_cast<std::size_t>(view.shape(0)));
-  for (py::ssize_t i = 0; i < view.shape(0); ++i)
-    cloud[static_cast<std::size_t>(i)] = Vec3(view(i, 0), view(i, 1), view(i, 2));
-  experiment::check_case_cloud(cloud, name);
-  return cloud;
+  const CoordinateRows rows{array.data(), static_cast<std::size_t>(array.shape(0)),
+                            array.strides(0), array.strides(1)};
+  return {std::move(array), rows};
+}
+
+/// The checks of `gjklab query --cases` on an array's points, for the message of a cloud the
+/// polytope refused (a NaN or infinite coordinate): the points copied, then check_case_cloud.
+[[noreturn]] void refuse(const CloudArray& cloud, const char* name,
+                         const InvalidGeometry& refused) {
+  std::vector<Vec3> points(cloud.rows.count);
+  const auto* bytes = static_cast<const char*>(cloud.rows.data);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      std::memcpy(&points[i][k],
+                  bytes + static_cast<std::ptrdiff_t>(i) * cloud.rows.row_stride +
+                      k * cloud.rows.column_stride,
+                  sizeof(double));
+  experiment::check_case_cloud(points, name);
+  throw std::invalid_argument(std::string("cloud ") + name + ": " + refused.what());
+}
+
+/// Clouds from this many points on are built with the GIL released: the build then takes
+/// microseconds (about 0.6 ns per point), against about 0.1 µs to release and take it back.
+constexpr std::size_t kReleaseGilPoints = 4096;
+
+/// The polytope of a checked array, in `polytope` (built, or its storage reused), with the
+/// messages of `gjklab query --cases`.
+void build(const CloudArray& cloud, const char* name, std::optional<Polytope>& polytope) {
+  std::optional<py::gil_scoped_release> release;
+  if (cloud.rows.count >= kReleaseGilPoints) release.emplace();
+  try {
+    if (polytope)
+      polytope->assign(cloud.rows);
+    else
+      polytope.emplace(cloud.rows);
+  } catch (const InvalidGeometry& e) {
+    refuse(cloud, name, e);
+  }
 }
 
 /// The text an experiment file would give for an option's value: a number, [x, y, z], a
@@ -199,38 +238,80 @@ py::dict query_dict(const QueryResult& r) {
 // ---- the calls -----------------------------------------------------------------------------
 
 /// A shape built once for many queries. Building a shape from an array (checking, copying,
-/// and the Polytope's bounding box and SIMD blocks) costs about as much as one GJK query on
-/// it; a study that queries the same shapes in many poses or with many algorithms builds them
-/// once.
+/// and the Polytope's bounding box and SIMD blocks, in one pass of about 0.6 ns per point)
+/// costs up to about as much as one GJK query on it; a study that queries the same shapes in
+/// many poses or with many algorithms builds them once.
 struct Shape {
   std::shared_ptr<const Polytope> polytope;
 };
 
-/// One side of a query: a Shape's polytope, or the points of an array, turned into a
-/// polytope later (with the GIL released).
-struct QueryInput {
-  std::shared_ptr<const Polytope> shape;
-  std::vector<Vec3> points;
+/// Polytopes of queries on arrays live in storage kept per thread, two slots (a query's two
+/// sides): a query on fresh arrays then allocates nothing, and writes to memory that is mapped
+/// and usually cached (fresh storage for a large cloud may come straight from the kernel, one
+/// page fault per 4 KiB written). A slot is busy while a query uses it; a query that finds none
+/// free (one started by Python code that converting another query's input ran) builds in its
+/// own storage. Clouds above kPooledPoints are not kept (48 bytes per point: at most 12 MiB
+/// per slot).
+struct PoolSlot {
+  std::optional<Polytope> polytope;
+  bool busy = false;
+};
+constexpr std::size_t kPooledPoints = std::size_t{1} << 18;
+thread_local PoolSlot pool[2];
 
-  const Polytope& polytope(std::optional<Polytope>& storage) {
-    if (shape) return *shape;
-    return storage.emplace(std::move(points));
+/// A pool slot marked busy for the lease's lifetime (released also when a build throws).
+struct SlotLease {
+  PoolSlot* slot = nullptr;
+  SlotLease() = default;
+  SlotLease(const SlotLease&) = delete;
+  SlotLease& operator=(const SlotLease&) = delete;
+  ~SlotLease() {
+    if (slot) slot->busy = false;
   }
 };
 
-QueryInput input_from(const py::handle& object, const char* name) {
-  if (py::isinstance<Shape>(object)) return {object.cast<const Shape&>().polytope, {}};
-  return {nullptr, cloud_from(object, name)};
-}
+/// One side of a query: a Shape's polytope, or one built from an array in a pool slot or in
+/// its own storage. Not copied or moved: it owns its slot until it is destroyed.
+class QueryInput {
+ public:
+  QueryInput(const py::handle& object, const char* name) {
+    if (py::isinstance<Shape>(object)) {
+      shape_ = object.cast<const Shape&>().polytope;
+      return;
+    }
+    const CloudArray cloud = cloud_array(object, name);
+    if (cloud.rows.count <= kPooledPoints) {
+      for (PoolSlot& slot : pool) {
+        if (!slot.busy) {
+          slot.busy = true;
+          lease_.slot = &slot;
+          break;
+        }
+      }
+    }
+    build(cloud, name, lease_.slot ? lease_.slot->polytope : own_);
+  }
+  QueryInput(const QueryInput&) = delete;
+  QueryInput& operator=(const QueryInput&) = delete;
 
-Outcome run_one(const AlgorithmInfo& info, QueryInput a, QueryInput b, double radius_a,
-                double radius_b, const experiment::AlgorithmOptions& options) {
+  const Polytope& polytope() const {
+    if (shape_) return *shape_;
+    return lease_.slot ? *lease_.slot->polytope : *own_;
+  }
+
+ private:
+  std::shared_ptr<const Polytope> shape_;
+  SlotLease lease_;
+  std::optional<Polytope> own_;
+};
+
+Outcome run_one(const AlgorithmInfo& info, const QueryInput& a, const QueryInput& b,
+                double radius_a, double radius_b, const experiment::AlgorithmOptions& options) {
   experiment::check_case_radius(radius_a, "radius_a");
   experiment::check_case_radius(radius_b, "radius_b");
   const py::gil_scoped_release release;
-  std::optional<Polytope> storage_a, storage_b;
-  return experiment::run_algorithm(info, a.polytope(storage_a), b.polytope(storage_b),
-                                   SweptRadii{radius_a, radius_b}, options);
+  return experiment::run_algorithm(info, a.polytope(), b.polytope(), SweptRadii{radius_a, radius_b},
+                                   options);
 }
 
 QueryResult query(const py::handle& a, const py::handle& b, const std::string& algorithm,
@@ -238,8 +319,8 @@ QueryResult query(const py::handle& a, const py::handle& b, const std::string& a
   const AlgorithmInfo& info = algorithm_named(algorithm);
   const AlgorithmSpec spec = spec_from(algorithm, options);
   QueryResult r{algorithm, radius_a, radius_b, {}};
-  r.outcome =
-      run_one(info, input_from(a, "a"), input_from(b, "b"), radius_a, radius_b, spec.options);
+  const QueryInput input_a(a, "a"), input_b(b, "b");
+  r.outcome = run_one(info, input_a, input_b, radius_a, radius_b, spec.options);
   return r;
 }
 
@@ -248,7 +329,8 @@ ExactResult exact_answer(const py::handle& a, const py::handle& b, bool depth, d
   const AlgorithmInfo& info = algorithm_named("exact");
   experiment::AlgorithmOptions options;
   options.oracle.depth = depth;  // as `gjklab query --depth`
-  Outcome o = run_one(info, input_from(a, "a"), input_from(b, "b"), radius_a, radius_b, options);
+  const QueryInput input_a(a, "a"), input_b(b, "b");
+  Outcome o = run_one(info, input_a, input_b, radius_a, radius_b, options);
   return {*o.exact};
 }
 
@@ -401,9 +483,10 @@ PYBIND11_MODULE(_gjklab, m) {
                     "A shape built once from an n×3 float64 array (its convex hull), for many "
                     "queries: query() and exact() take it wherever they take an array")
       .def(py::init([](const py::handle& points) {
-             std::vector<gjklab::Vec3> cloud = cloud_from(points, "shape");
-             const py::gil_scoped_release release;
-             return Shape{std::make_shared<const gjklab::Polytope>(std::move(cloud))};
+             const CloudArray cloud = cloud_array(points, "shape");
+             std::optional<gjklab::Polytope> polytope;
+             build(cloud, "shape", polytope);
+             return Shape{std::make_shared<const gjklab::Polytope>(std::move(*polytope))};
            }),
            py::arg("points"))
       .def_property_readonly(

@@ -143,3 +143,57 @@ def test_queries_release_the_gil():
     worker.join()
     counted.append(count)
     assert counted[0] > 10_000
+
+
+def test_large_clouds_name_the_non_finite_point():
+    # From 4096 points the shapes are built with the GIL released; the message is the same.
+    rng = np.random.default_rng(11)
+    cloud = rng.normal(size=(5000, 3))
+    cloud[4321, 2] = np.inf
+    with pytest.raises(ValueError, match="^cloud a point 4321: non-finite coordinate$"):
+        gjklab.query(cloud, B)
+    with pytest.raises(ValueError, match="^cloud shape point 4321: non-finite coordinate$"):
+        gjklab.Shape(cloud)
+
+
+def test_unaligned_and_strided_arrays_answer_as_contiguous_ones():
+    rng = np.random.default_rng(12)
+    a, b = rng.normal(size=(300, 3)), rng.normal(size=(300, 3)) + 2.5
+    raw = bytearray(a.nbytes + 1)
+    unaligned = np.frombuffer(raw, dtype=np.float64, count=a.size, offset=1).reshape(a.shape)
+    unaligned[...] = a
+    assert not unaligned.flags.aligned
+    strided = np.asfortranarray(b)
+    reference = gjklab.query(gjklab.Shape(a), gjklab.Shape(b))
+    result = gjklab.query(unaligned, strided)
+    assert (result.distance, result.iterations) == (reference.distance, reference.iterations)
+
+
+def test_shapes_from_arrays_of_changing_sizes_answer_as_shapes_built_once():
+    # Shapes built from arrays reuse storage from one query to the next.
+    rng = np.random.default_rng(13)
+    pairs = [(rng.normal(size=(n, 3)), rng.normal(size=(m, 3)) + [1.5, 0, 0])
+             for n, m in ((3000, 5), (1, 9000), (40, 40), (8193, 8191), (7, 2))]
+    expected = [gjklab.query(gjklab.Shape(a), gjklab.Shape(b)) for a, b in pairs]
+    for _ in range(2):
+        for (a, b), want in zip(pairs, expected):
+            got = gjklab.query(a, b)
+            assert (got.distance, got.iterations, got.intersect) == \
+                (want.distance, want.iterations, want.intersect)
+
+
+def test_a_query_run_while_converting_an_input_leaves_the_outer_query_intact():
+    # Converting b may run Python code (here __array__), which may itself query: the outer
+    # query's shape a must not be overwritten by the inner query's shapes.
+    rng = np.random.default_rng(14)
+    a, b = rng.normal(size=(50, 3)), rng.normal(size=(60, 3)) + [3.0, 0, 0]
+    inner = []
+
+    class Converting:
+        def __array__(self, dtype=None, copy=None):
+            inner.append(gjklab.query(rng.normal(size=(70, 3)), rng.normal(size=(80, 3))))
+            return b
+
+    want = gjklab.query(gjklab.Shape(a), gjklab.Shape(b))
+    got = gjklab.query(a, Converting())
+    assert inner and (got.distance, got.iterations) == (want.distance, want.iterations)
