@@ -265,9 +265,12 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
       make_rounds(config, threads, options.ranks, [stop = options.stop] { return stop && *stop; });
   const std::uint64_t first_written = first;
 
+  double writing = 0;  // seconds spent appending rounds
   auto record = [&](std::span<const CaseResult> results) {
     if (!writer) return;
+    const auto started = Clock::now();
     writer->append(results);
+    writing += std::chrono::duration<double>(Clock::now() - started).count();
     for (const CaseResult& r : results) {
       summary.add(r);
       by_family.add(r);
@@ -276,13 +279,14 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
   auto finish = [&](std::uint64_t written, bool complete) {
     progress.update(written, true);
     if (writer) writer->finish(utc_now(), complete);
-    if (options.ranks && writer && options.progress && written > first_written)
+    if (options.ranks && writer && options.progress && written > first_written) {
       // The job's serial part: no number of ranks delivers cases faster than rank 0 takes them.
-      *options.progress << "rank 0 took " << written - first_written << " cases in "
-                        << rounds->writer_seconds() << " s of decoding and writing ("
-                        << static_cast<double>(written - first_written) /
-                               std::max(rounds->writer_seconds(), 1e-9)
+      const double serial = std::max(rounds->decoding_seconds() + writing, 1e-9);
+      *options.progress << "rank 0 took " << written - first_written << " cases in " << serial
+                        << " s of decoding and writing ("
+                        << static_cast<double>(written - first_written) / serial
                         << " cases/s at most for any number of ranks)\n";
+    }
     report.output = complete || !writer
                         ? std::filesystem::path(options.output.value_or(config.output))
                         : writer->temporary_path();
@@ -296,6 +300,7 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
 
   for (std::size_t i = 0; i < prior.size(); i += batch_cases)
     record(prior.subspan(i, std::min<std::size_t>(batch_cases, prior.size() - i)));
+  writing = 0;  // the rewrite of a resumed run's cases is not the rounds' cost
 
   // The archive keeps its temporary name when a round throws: nothing that looks complete is
   // left behind.

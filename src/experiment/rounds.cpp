@@ -106,7 +106,7 @@ class DistributedRounds final : public RoundSource {
     rank0_fraction_ = 1.0 / ranks_.size();
   }
 
-  double writer_seconds() const override { return writer_seconds_; }
+  double decoding_seconds() const override { return decoding_seconds_; }
 
   Round next(std::uint64_t first, std::uint64_t count) override {
     // On rank 0 the time since the last round is what it spent writing that round.
@@ -136,7 +136,7 @@ class DistributedRounds final : public RoundSource {
     if (writes) {
       round.results = std::move(done);
       collect(parts, shares, round.results);
-      writer_seconds_ += writing + seconds_since(decoding);
+      decoding_seconds_ += seconds_since(decoding);
     }
     last_return_ = Clock::now();
     return round;
@@ -191,7 +191,7 @@ class DistributedRounds final : public RoundSource {
   double rank0_fraction_;
   Decision decision_;
   std::optional<Clock::time_point> last_return_;
-  double writer_seconds_ = 0;
+  double decoding_seconds_ = 0;
   // Seconds per case on rank 0 and on the others, from the last round that measured them.
   double rank0_case_seconds_ = 0, other_case_seconds_ = 0;
 };

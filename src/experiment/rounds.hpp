@@ -39,9 +39,9 @@ class RoundSource {
   /// it with the same arguments, and every rank throws when any case failed (rank 0 the
   /// case's error, the others PeerFailure).
   virtual Round next(std::uint64_t first, std::uint64_t count) = 0;
-  /// Distributed runs, on rank 0: seconds spent so far decoding the other ranks' results and
-  /// writing rounds (between calls of next), the job's serial part; 0 otherwise.
-  virtual double writer_seconds() const { return 0; }
+  /// Distributed runs, on rank 0: seconds spent so far decoding the other ranks' results
+  /// (with the writing, the job's serial part); 0 otherwise.
+  virtual double decoding_seconds() const { return 0; }
 };
 
 /// This process's threads alone (ranks null), or its share over the ranks.
