@@ -19,7 +19,8 @@ struct HuntArgs {
   std::uint64_t queries = 10000;
   std::string objective = "wrong_boolean";
   std::uint64_t seed = 1;
-  std::string out;  ///< FOUND.jsonl; the summary goes to FOUND.summary.json
+  std::string out;      ///< FOUND.jsonl; the summary goes to FOUND.summary.json
+  std::string archive;  ///< FILE.h5: the found cases run as an experiment (empty: none)
   bool force = false;
   bool no_random = false;
 };

@@ -270,10 +270,17 @@ std::optional<std::pair<Pair, Judged>> local_search(const BaseCase& base, const 
   return std::nullopt;
 }
 
+/// The id of a found case: hunt-ALGORITHM-INDEX, with the rank before the index in a
+/// distributed hunt (hunt-ALGORITHM-RANK.INDEX), so that the ranks' lines stay distinct.
+std::string found_case_id(const HuntOptions& options, std::size_t index) {
+  const std::string rank = options.ranks > 1 ? std::to_string(options.rank) + "." : "";
+  return "hunt-" + options.algorithm + "-" + rank + std::to_string(index);
+}
+
 FoundCase found_case(const Pair& p, const Judged& j, std::uint64_t base_case, std::uint64_t query,
-                     std::size_t index, const std::string& algorithm) {
+                     std::string id) {
   FoundCase f;
-  f.points.id = "hunt-" + algorithm + "-" + std::to_string(index);
+  f.points.id = std::move(id);
   f.points.a = p.a;
   f.points.b = p.b;
   f.points.radius_a = p.radii.a;
@@ -289,11 +296,14 @@ FoundCase found_case(const Pair& p, const Judged& j, std::uint64_t base_case, st
   return f;
 }
 
+/// The random baseline: `queries` judged cases of the experiment, from case id `first` in steps
+/// of `step` (a distributed hunt's ranks share the ids 0, 1, 2, … that way).
 std::uint64_t random_baseline_failures(const ExperimentConfig& config, const Judge& judge,
-                                       std::uint64_t queries, std::uint64_t& made) {
+                                       std::uint64_t queries, std::uint64_t first,
+                                       std::uint64_t step, std::uint64_t& made) {
   std::uint64_t failures = 0;
-  for (std::uint64_t id = 0; made < queries && id < 4 * queries + 16; ++id) {
-    const Pair p = pair_of(generate_case(config, id));
+  for (std::uint64_t k = 0; made < queries && k < 4 * queries + 16; ++k) {
+    const Pair p = pair_of(generate_case(config, first + k * step));
     if (!judge.handles_pair(p)) continue;
     const Judged j = judge(p, 0.0);
     if (!j.valid) continue;
@@ -330,7 +340,9 @@ HuntReport hunt(const ExperimentConfig& config, const HuntOptions& options) {
   HuntReport report;
   report.algorithm = options.algorithm;
   report.objective = options.objective;
-  std::mt19937_64 rng(options.seed);
+  // Rank 0 draws the single process's stream; the others their own (splitmix64's increment).
+  std::mt19937_64 rng(options.seed +
+                      static_cast<std::uint64_t>(options.rank) * std::uint64_t{0x9E3779B97F4A7C15});
   // Restarts that give no query (cases the algorithm cannot answer) are bounded too.
   for (std::uint64_t attempts = 0;
        report.queries < options.queries && attempts < 4 * options.queries + 16; ++attempts) {
@@ -348,12 +360,13 @@ HuntReport hunt(const ExperimentConfig& config, const HuntOptions& options) {
     const Judged again = judge(small, target);
     // Shrinking keeps only failing pairs, so `again` fails; the check keeps a stray one out.
     if (!again.valid || !again.failure) continue;
-    report.found.push_back(found_case(small, again, base_case, report.queries, report.found.size(),
-                                      options.algorithm));
+    report.found.push_back(found_case(small, again, base_case, report.queries,
+                                      found_case_id(options, report.found.size())));
   }
   if (options.random_baseline)
-    report.random_failures =
-        random_baseline_failures(config, judge, report.queries, report.random_queries);
+    report.random_failures = random_baseline_failures(
+        config, judge, report.queries, static_cast<std::uint64_t>(options.rank),
+        static_cast<std::uint64_t>(options.ranks), report.random_queries);
   return report;
 }
 
@@ -384,6 +397,34 @@ std::string found_case_line(const FoundCase& f, const HuntReport& report) {
   by["query"] = f.query;
   j["found_by"] = by;
   return json_line(j);
+}
+
+std::uint64_t rank_queries(std::uint64_t queries, int rank, int ranks) {
+  const auto n = static_cast<std::uint64_t>(ranks), k = static_cast<std::uint64_t>(rank);
+  return queries / n + (k < queries % n ? 1 : 0);
+}
+
+std::string merge_hunt_summaries(const std::vector<std::string>& summaries) {
+  if (summaries.empty()) throw std::invalid_argument("hunt: no summaries to merge");
+  nlohmann::ordered_json merged;
+  for (const std::string& line : summaries) {
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    if (!j.is_object() || !j.contains("algorithm") || !j.contains("objective"))
+      throw std::invalid_argument("hunt: malformed rank summary: " + line.substr(0, 200));
+    if (merged.empty()) {
+      merged = nlohmann::ordered_json::parse(line);
+      continue;
+    }
+    if (j["algorithm"] != merged["algorithm"] || j["objective"] != merged["objective"])
+      throw std::invalid_argument("hunt: rank summaries of different searches");
+    for (const char* key : {"failures_found", "queries", "restarts", "shrink_queries",
+                            "random_failures", "random_queries"})
+      merged[key] = merged[key].get<std::uint64_t>() + j.at(key).get<std::uint64_t>();
+    merged["worst_relative_error"] = std::max(merged["worst_relative_error"].get<double>(),
+                                              j.at("worst_relative_error").get<double>());
+  }
+  merged["ranks"] = summaries.size();
+  return json_line(merged);
 }
 
 std::string hunt_summary_json(const HuntReport& r) {

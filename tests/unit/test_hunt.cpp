@@ -121,3 +121,28 @@ TEST_CASE("gjklab hunt writes FOUND.jsonl and FOUND.summary.json, refuses to rep
   CHECK(r.status == 1);
   CHECK(r.err.find("unknown algorithm 'gjk-nothing'") != std::string::npos);
 }
+
+TEST_CASE("gjklab hunt --archive runs the found cases into an archive, every one wrong",
+          "[unit][hunt]") {
+  ScratchDir dir("hunt-archive");
+  const std::string experiment = dir.file("hunt.toml");
+  std::ofstream(experiment) << kExperiment;
+  const std::string found = dir.file("found.jsonl"), archive = dir.file("found.h5");
+  auto r = run_cli({"hunt", experiment, "--algorithm", "libccd-gjk", "--queries", "1500", "--out",
+                    found, "--archive", archive, "--no-random"});
+  REQUIRE(r.status == 0);
+  std::ifstream in(found);
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);)
+    ++lines;
+  REQUIRE(lines >= 2);
+  r = run_cli({"inspect", archive});
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find(std::to_string(lines) + " of " + std::to_string(lines) + " cases, complete") !=
+        std::string::npos);
+  CHECK(r.out.find("libccd-gjk: wrong_boolean=" + std::to_string(lines)) != std::string::npos);
+  r = run_cli({"hunt", experiment, "--algorithm", "libccd-gjk", "--queries", "10", "--out",
+               dir.file("y.jsonl"), "--archive", dir.file("y.jsonl")});
+  CHECK(r.status == 2);
+  CHECK(r.err.find("same file") != std::string::npos);
+}

@@ -50,6 +50,11 @@ struct HuntOptions {
   int restart_queries = 48;     ///< the most queries one restart's local search may spend
   int shrink_queries = 400;     ///< the most queries shrinking one failure may spend
   bool random_baseline = true;  ///< also spend the budget on random sampling
+  /// A distributed hunt's part (rank `rank` of `ranks`, each with its share of `queries`): its
+  /// restarts draw from their own stream of the seed (rank 0's is the single process's), and
+  /// its random baseline samples case ids rank, rank + ranks, rank + 2·ranks, …
+  int rank = 0;
+  int ranks = 1;
 };
 
 /// One failing configuration, shrunk.
@@ -87,5 +92,13 @@ std::string found_case_line(const FoundCase& f, const HuntReport& report);
 
 /// The summary (failures_found, queries, random_failures, random_queries, …) as one JSON line.
 std::string hunt_summary_json(const HuntReport& report);
+
+/// The budget of queries of rank `rank` of `ranks` (the remainder goes to the first ranks).
+std::uint64_t rank_queries(std::uint64_t queries, int rank, int ranks);
+
+/// One summary of a distributed hunt from its ranks' summaries (hunt_summary_json lines, in
+/// rank order): counts added, the worst error the largest. Throws std::invalid_argument for
+/// summaries of different algorithms or objectives, or malformed ones.
+std::string merge_hunt_summaries(const std::vector<std::string>& summaries);
 
 }  // namespace gjklab::experiment
