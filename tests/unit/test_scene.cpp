@@ -1,12 +1,14 @@
-// Scene layer: mass properties from the hull's tetrahedra, and the broad phases against the
-// all-pairs reference on random scenes.
+// Scene layer: mass properties from the hull's tetrahedra, and the broad phases (and Bullet's
+// dbvt, when built in) against the all-pairs reference on random, dense and irregular scenes.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "gjklab/geometry/shapes.hpp"
+#include "gjklab/peers/bullet_broadphase.hpp"
 #include "gjklab/scene/body.hpp"
 #include "gjklab/scene/broadphase.hpp"
 
@@ -112,20 +114,76 @@ TEST_CASE("scene: grid and sweep-and-prune give exactly the all-pairs overlap se
   }
 }
 
-TEST_CASE("scene: the broad phases give the all-pairs set on 1000 bodies, frame after frame",
-          "[unit][scene]") {
-  // The demo's density: 1000 boxes of 0.5 to 1.7 m in a 24 × 24 × 12 m region above an
-  // 80 m ground, falling and jostling for 30 frames, then turned on their side (the sweep
-  // axis changes and sweep-and-prune sorts afresh).
-  std::mt19937_64 rng(1000);
+namespace {
+
+/// The demo's density: 1000 boxes of 0.5 to 1.7 m in a 24 × 24 × 12 m region above an 80 m
+/// ground (box 0).
+std::vector<Aabb> dense_scene(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<Aabb> boxes(1001);
   boxes[0] = {Vec3(-40, -40, -1), Vec3(40, 40, 0)};
   for (std::size_t i = 1; i < boxes.size(); ++i) {
     const Vec3 c(24 * u(rng) - 12, 24 * u(rng) - 12, 1 + 12 * u(rng));
-    const Vec3 half = Vec3(0.25 + 0.6 * u(rng), 0.25 + 0.6 * u(rng), 0.25 + 0.6 * u(rng));
+    const Vec3 half(0.25 + 0.6 * u(rng), 0.25 + 0.6 * u(rng), 0.25 + 0.6 * u(rng));
     boxes[i] = {c - half, c + half};
   }
+  return boxes;
+}
+
+/// One frame: every box but the ground falls 8 cm and jostles, resting on the ground. At
+/// frame 30 the scene is turned on its side instead (the sweep axis changes).
+void next_frame(std::vector<Aabb>& boxes, int frame, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  if (frame == 30) {
+    for (Aabb& b : boxes) {
+      std::swap(b.lower.x(), b.lower.z());
+      std::swap(b.upper.x(), b.upper.z());
+    }
+    return;
+  }
+  for (std::size_t i = 1; i < boxes.size(); ++i) {
+    Vec3 d(0.1 * (u(rng) - 0.5), 0.1 * (u(rng) - 0.5), -0.08);  // m per frame
+    d.z() = std::max(d.z(), -boxes[i].lower.z());
+    boxes[i].lower += d;
+    boxes[i].upper += d;
+  }
+}
+
+/// NaN (overlaps nothing), inverted (lower above upper: the test may still accept it),
+/// infinite (a half-space), and, when `huge`, coordinates near the largest double, among
+/// ordinary boxes.
+std::vector<Aabb> irregular_scene(std::mt19937_64& rng, bool huge) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Aabb> boxes(60);
+  for (Aabb& b : boxes) {
+    const Vec3 c(10 * u(rng), 10 * u(rng), 10 * u(rng));
+    b = {c - Vec3::Constant(0.5), c + Vec3::Constant(0.5)};
+  }
+  boxes[3].lower.y() = NAN;
+  std::swap(boxes[5].lower.x(), boxes[5].upper.x());
+  boxes[6] = {Vec3(2, 3, 4), Vec3(1, 2, 5)};  // inverted on two axes
+  boxes[8].lower.z() = -INFINITY;
+  boxes[9] = {Vec3::Constant(-INFINITY), Vec3::Constant(INFINITY)};
+  if (huge) {
+    boxes[10] = {Vec3::Constant(-1.7e308), Vec3::Constant(-1.6e308)};
+    boxes[11] = {Vec3::Constant(1.6e308), Vec3::Constant(1.7e308)};
+  }
+  return boxes;
+}
+
+std::vector<peers::BroadphaseBox> peer_boxes(const std::vector<Aabb>& boxes) {
+  std::vector<peers::BroadphaseBox> out;
+  for (const Aabb& b : boxes)
+    out.push_back({b.lower, b.upper});
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("scene: the broad phases give the all-pairs set on 1000 bodies, frame after frame",
+          "[unit][scene]") {
+  std::mt19937_64 rng(1000);
+  std::vector<Aabb> boxes = dense_scene(rng);
   BroadPhase grid(BroadPhaseKind::grid), sap(BroadPhaseKind::sweep_and_prune);
   std::vector<BodyPair> reference, g, s;
   std::size_t fewest = SIZE_MAX;
@@ -136,42 +194,15 @@ TEST_CASE("scene: the broad phases give the all-pairs set on 1000 bodies, frame 
     CHECK(g == reference);
     CHECK(s == reference);
     fewest = std::min(fewest, reference.size());
-    for (std::size_t i = 1; i < boxes.size(); ++i) {
-      Vec3 d(0.1 * (u(rng) - 0.5), 0.1 * (u(rng) - 0.5), -0.08);  // m per frame
-      if (frame == 30) d = Vec3::Zero();
-      if (boxes[i].lower.z() + d.z() < 0) d.z() = -boxes[i].lower.z();  // rest on the ground
-      boxes[i].lower += d;
-      boxes[i].upper += d;
-    }
-    if (frame == 30)
-      for (Aabb& b : boxes) {
-        std::swap(b.lower.x(), b.lower.z());
-        std::swap(b.upper.x(), b.upper.z());
-      }
+    next_frame(boxes, frame, rng);
   }
   CHECK(fewest > 500);  // a dense scene: most boxes meet another
 }
 
 TEST_CASE("scene: the broad phases give the all-pairs set on irregular boxes", "[unit][scene]") {
-  // NaN (overlaps nothing), inverted (lower above upper: the test may still accept it),
-  // infinite (a half-space), and coordinates near the largest double, among ordinary boxes.
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
   for (int trial = 0; trial < 20; ++trial) {
-    std::vector<Aabb> boxes(60);
-    for (Aabb& b : boxes) {
-      const Vec3 c(10 * u(rng), 10 * u(rng), 10 * u(rng));
-      b = {c - Vec3::Constant(0.5), c + Vec3::Constant(0.5)};
-    }
-    boxes[3].lower.y() = NAN;
-    std::swap(boxes[5].lower.x(), boxes[5].upper.x());
-    boxes[6] = {Vec3(2, 3, 4), Vec3(1, 2, 5)};  // inverted on two axes
-    boxes[8].lower.z() = -INFINITY;
-    boxes[9] = {Vec3::Constant(-INFINITY), Vec3::Constant(INFINITY)};
-    if (trial % 2 == 1) {
-      boxes[10] = {Vec3::Constant(-1.7e308), Vec3::Constant(-1.6e308)};
-      boxes[11] = {Vec3::Constant(1.6e308), Vec3::Constant(1.7e308)};
-    }
+    const std::vector<Aabb> boxes = irregular_scene(rng, trial % 2 == 1);
     std::vector<BodyPair> reference, g, s;
     all_pairs(boxes, reference);
     BroadPhase grid(BroadPhaseKind::grid), sap(BroadPhaseKind::sweep_and_prune);
@@ -179,6 +210,37 @@ TEST_CASE("scene: the broad phases give the all-pairs set on irregular boxes", "
     sap.find_pairs(boxes, s);
     CHECK(g == reference);
     CHECK(s == reference);
+  }
+}
+
+TEST_CASE("scene: Bullet's dbvt broad phase gives the all-pairs set", "[unit][scene]") {
+  if (!peers::bullet_broadphase_available()) {
+    CHECK_THROWS(peers::BulletDbvtBroadphase());
+    WARN("built without Bullet: its broad phase is not checked");
+    return;
+  }
+  std::mt19937_64 rng(1000);
+  std::vector<Aabb> boxes = dense_scene(rng);
+  peers::BulletDbvtBroadphase dbvt;
+  std::vector<BodyPair> reference, d;
+  for (int frame = 0; frame < 40; ++frame) {
+    all_pairs(boxes, reference);
+    dbvt.find_pairs(peer_boxes(boxes), d);
+    CHECK(d == reference);
+    next_frame(boxes, frame, rng);
+  }
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Aabb> irregular = irregular_scene(rng, trial % 2 == 1);
+    all_pairs(irregular, reference);
+    dbvt.find_pairs(peer_boxes(irregular), d);  // a new tree: the count changed
+    CHECK(d == reference);
+    // The same boxes again, then with the NaN box made regular (it joins the tree).
+    dbvt.find_pairs(peer_boxes(irregular), d);
+    CHECK(d == reference);
+    irregular[3].lower.y() = irregular[3].upper.y() - 1;
+    all_pairs(irregular, reference);
+    dbvt.find_pairs(peer_boxes(irregular), d);
+    CHECK(d == reference);
   }
 }
 

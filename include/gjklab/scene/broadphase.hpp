@@ -61,6 +61,7 @@ void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
 /// inverted are kept aside and tested against every box.
 class SweepAndPrune {
  public:
+  /// At most 2³⁰ − 1 boxes (a listing packs the index with two flags in 32 bits).
   void find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
   int axis() const { return axis_; }
   std::size_t bands() const { return band_start_.empty() ? 0 : band_start_.size() - 1; }
@@ -70,29 +71,37 @@ class SweepAndPrune {
   struct Range {
     std::int32_t lo[2], hi[2];
   };
-  /// A box as listed in one band, laid out for a two-lane compare: the lower bounds and the
-  /// negated upper bounds across the sweep axis (b overlaps a there when all of b's lower
-  /// bounds are ≤ a's upper ones and −b.upper ≤ −a.lower; negation is exact).
-  struct alignas(16) Entry {
-    double lo_x, lo_u, lo_v, neg_hi_u, neg_hi_v;
-    std::uint32_t body;
-    std::uint32_t first;  ///< bit 0: the box's lowest band in u; bit 1: in v
+  /// A box's bounds across the sweep axis, laid out for two-lane compares: b overlaps a there
+  /// when (b.lo_u, b.lo_v) ≤ (a.hi_u, a.hi_v) and (−b.hi_u, −b.hi_v) ≤ (−a.lo_u, −a.lo_v), lane
+  /// by lane (negation is exact).
+  struct alignas(16) Across {
+    double lo_u, lo_v, neg_hi_u, neg_hi_v;
+  };
+  /// A box listed in a band: code = index << 2 | first, where first's bit 0 says the band is
+  /// the box's lowest along u, bit 1 along v. The bands' lists hold only codes (4 bytes each):
+  /// writing them is the cost that grows when the caches are cold, as in a simulation step.
+  struct Listing {
+    std::uint32_t band, code;
   };
   void choose_axis(std::span<const Aabb> boxes);
   std::size_t assign_bands(std::span<const Aabb> boxes);
   void sort_order(bool from_scratch);
-  void fill_bands(std::span<const Aabb> boxes);
+  std::size_t list_boxes();
+  void fill_bands(std::size_t listings);
   std::size_t sweep_bands();
   void aside_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) const;
 
   int axis_ = -1;
-  std::int32_t columns_ = 1;          ///< bands along u
-  std::vector<std::uint32_t> order_;  ///< bodies by lower bound on the axis, kept between calls
-  std::vector<double> key_, upper_, sample_;
+  std::uint32_t columns_ = 1;         ///< bands along u
+  std::vector<std::uint32_t> order_;  ///< boxes by lower bound on the axis, kept between calls
+  /// Per box, plus a last entry (key +∞) read by the sweep past the end of the lists.
+  std::vector<double> key_, upper_;
+  std::vector<Across> across_;
+  std::vector<double> sample_;
   std::vector<std::uint8_t> is_aside_;
-  std::vector<std::uint32_t> aside_, band_start_, band_fill_;
+  std::vector<std::uint32_t> aside_, band_start_, band_fill_, entries_;
   std::vector<Range> range_;
-  std::vector<Entry> entries_;
+  std::vector<Listing> listings_;
   std::vector<BodyPair> found_, sort_tmp_;  ///< found_: scratch of the sweep, only grows
   std::vector<std::uint32_t> sort_count_;
 };
