@@ -19,15 +19,18 @@
 namespace gjklab::experiment {
 
 int launched_ranks() {
-  // Open MPI's mpirun, PMIx launchers (srun --mpi=pmix) and PMI-1/2 launchers (MPICH's hydra,
-  // srun --mpi=pmi2) each set one of these in every process they start.
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"})
-    if (const char* v = std::getenv(name);
-        v && (std::getenv("PMIX_RANK") || std::getenv("PMI_RANK") ||
-              std::string_view(name) == "OMPI_COMM_WORLD_SIZE"))
-      return std::max(1, std::atoi(v));
-  if (std::getenv("PMIX_RANK") || std::getenv("PMI_RANK")) return 1;
-  return 0;
+  // Open MPI's mpirun sets OMPI_COMM_WORLD_SIZE; PMIx launchers (srun --mpi=pmix) set PMIX_RANK
+  // and PMI-1/2 launchers (MPICH's hydra, srun --mpi=pmi2) PMI_RANK, the size in PMI_SIZE or
+  // Slurm's SLURM_STEP_NUM_TASKS. Tasks of a plain srun get no rank: they are separate runs.
+  auto number = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v ? std::max(1, std::atoi(v)) : 0;
+  };
+  if (const int n = number("OMPI_COMM_WORLD_SIZE")) return n;
+  if (!std::getenv("PMIX_RANK") && !std::getenv("PMI_RANK")) return 0;
+  if (const int n = number("PMI_SIZE")) return n;
+  if (const int n = number("SLURM_STEP_NUM_TASKS")) return n;
+  return 1;
 }
 
 #ifdef GJKLAB_HAVE_MPI
