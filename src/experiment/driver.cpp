@@ -283,9 +283,10 @@ RunReport run_cases(const ExperimentConfig& config, const RunOptions& options,
       // The job's serial part: no number of ranks delivers cases faster than rank 0 takes them.
       const double serial = std::max(rounds->decoding_seconds() + writing, 1e-9);
       *options.progress << "rank 0 took " << written - first_written << " cases in " << serial
-                        << " s of decoding and writing ("
+                        << " s (" << rounds->decoding_seconds() << " s decoding the other ranks' "
+                        << "results, " << writing << " s writing): at most "
                         << static_cast<double>(written - first_written) / serial
-                        << " cases/s at most for any number of ranks)\n";
+                        << " cases/s for any number of ranks\n";
     }
     report.output = complete || !writer
                         ? std::filesystem::path(options.output.value_or(config.output))
