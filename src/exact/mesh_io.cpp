@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gjklab/geometry/polytope.hpp"
+#include "ply_reader.hpp"
 
 namespace gjklab::exact {
 
@@ -147,7 +148,13 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
   const std::uintmax_t file_size = std::filesystem::file_size(file, ec);
   if (ec) throw std::runtime_error(name + ": cannot read the file size");
   const std::string ext = lower_extension(file);
-  if (ext == ".ply") check_ply_header(file, file_size);
+  if (ext == ".ply") {
+    check_ply_header(file, file_size);
+    std::vector<Vec3> cloud = detail::read_ply_vertices(file);
+    if (const std::string problem = describe_invalid_cloud(cloud); !problem.empty())
+      throw std::runtime_error(name + ": " + problem);
+    return cloud;
+  }
   if (ext == ".off") check_off_header(file, file_size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;

@@ -91,13 +91,40 @@ TEST_CASE(
     "PLY with a face list count of -1 (signed char): a clear error, not std::length_error "
     "out of the program",
     "[regression][hostile][fuzz]") {
-  // CGAL's reader resizes the list to the count, here 2^64 - 1, and lets std::length_error
-  // through; `gjklab query` catches InputError only.
+  // CGAL's reader resized the list to the count, here 2^64 - 1, and let std::length_error
+  // through; `gjklab query` catches InputError only. gjklab's own PLY reader checks each count.
   CHECK_THROWS_WITH(exact::read_mesh_vertices(hostile("ply_face_list_count_minus_1.ply")),
                     Catch::Contains("ply_face_list_count_minus_1.ply") &&
-                        Catch::Contains("cannot read the mesh"));
+                        Catch::Contains("list count that is not a non-negative integer") &&
+                        Catch::Contains("(in face 1 of"));
   CHECK_THROWS_AS(experiment::read_point_file(hostile("ply_face_list_count_minus_1.ply")),
                   experiment::InputError);
+}
+
+TEST_CASE(
+    "PLY whose face list count (1.7e8) reaches past the end of the file: a clear error, not a "
+    "read of 1.7e8 items",
+    "[regression][hostile][fuzz]") {
+  // CGAL's reader resized the list to the count and read far past the end of the file (tens of
+  // seconds, hundreds of MB), as a garbled binary file found by fuzzing made it.
+  const std::string file =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/ply_face_list_count_1.7e8_past_the_end.ply";
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(file),
+                    Catch::Contains("ply_face_list_count_1.7e8_past_the_end.ply") &&
+                        Catch::Contains("list count beyond the end of the file") &&
+                        Catch::Contains("(in face 1 of 1)"));
+}
+
+TEST_CASE("PLY files with garbled binary headers found by fuzzing: clear errors with the line",
+          "[regression][hostile][fuzz]") {
+  // Each made CGAL's reader allocate or read hundreds of MB (fuzz inputs, first byte dropped).
+  const std::string dir = std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/";
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(dir + "ply_garbled_header_element_count_oom.ply"),
+                    Catch::Contains("ply_garbled_header_element_count_oom.ply:4") &&
+                        Catch::Contains("unknown PLY type 'vertex'"));
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(dir + "ply_garbled_header_list_count_hang.ply"),
+                    Catch::Contains("ply_garbled_header_list_count_hang.ply:2") &&
+                        Catch::Contains("unknown PLY header line"));
 }
 
 TEST_CASE(
