@@ -419,7 +419,8 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
                       "TOML syntax error: " + std::string(e.description()));
   }
   const Table root(source, doc, "");
-  root.allow_only({"scene", "physics", "broad_phase", "narrow_phase", "static", "bodies"});
+  root.allow_only(
+      {"scene", "physics", "broad_phase", "narrow_phase", "oracle", "static", "bodies"});
   SceneSetup s;
   s.text = text;
   const Table sc = root.child("scene");
@@ -430,6 +431,10 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
   s.pose_every = sc.integer("pose_every", 10, 1, kMaxFrames);
   s.contacts_every = sc.integer("contacts_every", 10, 1, kMaxFrames);
   s.compare_broad_phases = sc.boolean("compare_broad_phases", false);
+  const Table oracle = root.child("oracle");
+  oracle.allow_only({"audit_every", "depth"});
+  s.audit_every = oracle.integer("audit_every", 0, 0, kMaxFrames);
+  s.audit_depth = oracle.boolean("depth", false);
   scene::WorldSettings settings;
   read_settings(root, settings);
   s.world = std::make_unique<scene::World>(settings);

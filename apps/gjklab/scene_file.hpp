@@ -22,6 +22,10 @@ struct SceneSetup {
   std::int64_t contacts_every = 10;
   /// Time all three broad phases on every frame's boxes (and check they agree).
   bool compare_broad_phases = false;
+  /// [oracle] audit_every: the exact answers of the pairs queried in every k-th frame
+  /// (0: none); depth: also their exact penetration depths.
+  std::int64_t audit_every = 0;
+  bool audit_depth = false;
   std::unique_ptr<scene::World> world;
   /// Per body: the name of its shape kind ("box", "cone", …, "funnel", "hull").
   std::vector<std::string> shape_names;

@@ -14,6 +14,7 @@
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/provenance.hpp"
 #include "gjklab/peers/bullet_broadphase.hpp"
+#include "gjklab/scene_audit.hpp"
 #include "gjklab/scene_file.hpp"
 
 namespace gjklab::cli {
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Schema of the scene archive (documented in README.md, "Scenes"); bumped on any change.
-constexpr int kSceneSchemaVersion = 2;  // 2: frames/dbvt_ns
+constexpr int kSceneSchemaVersion = 2;  // 2: frames/dbvt_ns, audit/
 
 struct SimulationError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -163,6 +164,7 @@ struct Recording {
   FrameRows frames;
   PoseRows poses;
   ContactRows contacts;
+  AuditRows audit;
 };
 
 void record_poses(const scene::World& w, std::int64_t frame, PoseRows& r) {
@@ -255,11 +257,15 @@ void record_frame(const scene::World& w, const scene::StepStats& st, double size
 Recording simulate(SceneSetup& s, std::int64_t frames, std::int64_t& done) {
   Recording r;
   BroadPhaseComparison compare;
+  SceneAudit audit(s.audit_depth);
   scene::World& w = *s.world;
   record_poses(w, 0, r.poses);
   for (done = 0; done < frames;) {
+    const bool audited = s.audit_every > 0 && (done + 1) % s.audit_every == 0;
+    if (audited) audit.before_step(w);
     const scene::StepStats st = w.step();
     ++done;
+    if (audited) audit.after_step(w, done, r.audit);
     record_frame(w, st, s.body_size, r.frames);
     if (s.compare_broad_phases) compare.run(w, r.frames);
     if (done % s.pose_every == 0) record_poses(w, done, r.poses);
@@ -326,6 +332,18 @@ void write_contacts(const H5& h, hid_t file, const ContactRows& c) {
   write_column(h, g.id, "normal_impulse", c.normal_impulse);
 }
 
+void write_audit(const H5& h, hid_t file, const AuditRows& a) {
+  Closer g = make_group(h, file, "audit");
+  write_column(h, g.id, "frame", a.frame);
+  write_column(h, g.id, "body_a", a.a);
+  write_column(h, g.id, "body_b", a.b);
+  write_column(h, g.id, "intersect", a.intersect);
+  write_column(h, g.id, "certified", a.certified);
+  write_column(h, g.id, "distance", a.distance);
+  write_column(h, g.id, "depth", a.depth);
+  write_column(h, g.id, "narrow_depth", a.narrow_depth);
+}
+
 void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string& scene_path,
                 std::int64_t frames_done) {
   string_attribute(h, file, "format", "gjklab-scene");
@@ -339,6 +357,8 @@ void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string&
   number_attribute<std::int64_t>(h, file, "frames", frames_done);
   number_attribute<std::int64_t>(h, file, "pose_every", s.pose_every);
   number_attribute<std::int64_t>(h, file, "contacts_every", s.contacts_every);
+  number_attribute<std::int64_t>(h, file, "audit_every", s.audit_every);
+  number_attribute<std::uint8_t>(h, file, "audit_depth", s.audit_depth ? 1 : 0);
   number_attribute<double>(h, file, "body_size", s.body_size);
   const auto& st = s.world->settings();
   number_attribute<double>(h, file, "dt", st.dt);
@@ -362,6 +382,7 @@ void write_archive(const std::string& path, const SceneSetup& s, const std::stri
     write_frames(h, file.id, r.frames, s.compare_broad_phases);
     write_bodies(h, file.id, s, r.poses);
     write_contacts(h, file.id, r.contacts);
+    if (s.audit_every > 0) write_audit(h, file.id, r.audit);
     number_attribute<std::uint8_t>(h, file.id, "finite", finite ? 1 : 0);
     // Written last: a reader that sees complete = 1 sees every dataset.
     number_attribute<std::uint8_t>(h, file.id, "complete", 1);
@@ -370,6 +391,23 @@ void write_archive(const std::string& path, const SceneSetup& s, const std::stri
   std::error_code ec;
   fs::rename(temp, path, ec);
   if (ec) h.fail("cannot rename " + temp + ": " + ec.message());
+}
+
+/// The audit in three numbers: pairs, the share certified, and the narrow phase's largest
+/// error on the pairs it made contact with (its depth against the exact signed gap).
+void print_audit(const AuditRows& a, std::ostream& out) {
+  std::size_t certified = 0, compared = 0;
+  double worst = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    certified += a.certified[k];
+    // The exact signed gap: −distance apart, +depth inside (when computed).
+    const double exact = a.intersect[k] ? a.depth[k] : -a.distance[k];
+    if (std::isnan(a.narrow_depth[k]) || std::isnan(exact)) continue;
+    ++compared;
+    worst = std::max(worst, std::abs(a.narrow_depth[k] - exact));
+  }
+  out << "\n  audit: " << a.size() << " pairs exactly, " << certified << " certified; narrow "
+      << "phase vs exact on " << compared << " pairs with contacts: largest |error| " << worst;
 }
 
 double mean(const std::vector<double>& v, const std::vector<std::int64_t>& weights) {
@@ -419,6 +457,7 @@ int run_simulate_command(const SimulateArgs& args, std::ostream& out, std::ostre
         << "  mean GJK iterations: " << mean(f.iterations_mean, f.narrow_queries);
     if (s.world->settings().measure_cold)
       out << " (cold: " << mean(f.iterations_cold_mean, f.narrow_queries) << ")";
+    if (s.audit_every > 0) print_audit(r.audit, out);
     out << "\n  archive: " << path << "\n";
     if (!finite) {
       err << "gjklab simulate: the state stopped being finite at frame " << done << "\n";

@@ -1,5 +1,5 @@
 // `gjklab simulate`: scene files with errors naming file, line and key; a small scene run to
-// its archive; an existing archive kept without --force.
+// its archive; an existing archive kept without --force; the exact audit of a step's pairs.
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
@@ -11,6 +11,8 @@
 
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/config.hpp"
+#include "gjklab/geometry/shapes.hpp"
+#include "gjklab/scene_audit.hpp"
 #include "gjklab/scene_file.hpp"
 
 namespace fs = std::filesystem;
@@ -86,6 +88,10 @@ TEST_CASE("simulate: scene file errors name file, line and key", "[unit][scene]"
   CHECK(error_of("[scene]\nspeed = 3\n[[bodies]]\nshape = \"box\"\n")
             .find("bad.toml:2: key 'scene.speed': unknown key") == 0);
   CHECK(error_of("[scene\n").find("bad.toml:1: TOML syntax error") == 0);
+  CHECK(error_of("[oracle]\naudit_every = -1\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'oracle.audit_every'") == 0);
+  CHECK(error_of("[oracle]\nevery = 3\n[[bodies]]\nshape = \"box\"\n")
+            .find("bad.toml:2: key 'oracle.every': unknown key") == 0);
   CHECK(error_of("[scene]\nname = \"x\"\n").find("a scene needs at least one [[bodies]]") !=
         std::string::npos);
 }
@@ -110,5 +116,62 @@ TEST_CASE("simulate: a small scene runs to a complete archive", "[unit][scene]")
   // A missing scene file is an error with its name, not a crash.
   CHECK(run_cli({"simulate", (dir / "none.toml").string()}, out, err) == 1);
   CHECK(err.find("none.toml") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("simulate: the audit answers a step's pairs exactly beside the narrow phase",
+          "[unit][scene]") {
+  using namespace gjklab;
+  // Without gravity: a unit cube 1 cm above the ground and a second one beside it, 1 cm
+  // inside the first and 1 cm above the ground too.
+  scene::WorldSettings settings;
+  settings.gravity = Vec3::Zero();
+  scene::World world(settings);
+  auto shape_of = [](const Polytope& p) {
+    return scene::make_convex_shape({p.vertices().begin(), p.vertices().end()});
+  };
+  world.add(scene::make_static_body(shape_of(shapes::box(Vec3(40, 40, 1))), Quat::Identity(),
+                                    Vec3(0, 0, -0.5)));
+  const auto cube = shape_of(shapes::box());
+  world.add(scene::make_dynamic_body(cube, 1000, Quat::Identity(), Vec3(0, 0, 0.51)));
+  world.add(scene::make_dynamic_body(cube, 1000, Quat::Identity(), Vec3(0.99, 0, 0.51)));
+  cli::SceneAudit audit(true);
+  cli::AuditRows rows;
+  audit.before_step(world);
+  world.step();
+  audit.after_step(world, 1, rows);
+  REQUIRE(rows.size() == 3);  // (ground, 1), (ground, 2), (1, 2)
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    CHECK(rows.frame[k] == 1);
+    INFO("pair " << rows.a[k] << ", " << rows.b[k]);
+    if (rows.a[k] == 0) {
+      CHECK_FALSE(rows.intersect[k]);
+      CHECK(rows.distance[k] == Approx(0.01).margin(1e-12));
+      CHECK(std::isnan(rows.depth[k]));
+      CHECK(rows.narrow_depth[k] == Approx(-0.01).margin(1e-9));  // a speculative contact
+    } else {
+      CHECK(rows.intersect[k]);
+      CHECK(rows.distance[k] == 0);
+      CHECK(rows.depth[k] == Approx(0.01).margin(1e-12));
+      CHECK(rows.narrow_depth[k] == Approx(0.01).margin(1e-9));
+    }
+  }
+}
+
+TEST_CASE("simulate: a scene with an audit writes it", "[unit][scene]") {
+  const fs::path dir =
+      fs::temp_directory_path() / ("gjklab-scene-audit-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string scene = (dir / "audited.toml").string();
+  const std::string archive = (dir / "audited.h5").string();
+  std::ofstream(scene) << kScene << "\n[oracle]\naudit_every = 10\n";
+  std::string out, err;
+  REQUIRE(run_cli({"simulate", scene, "--out", archive}, out, err) == 0);
+  // Frames 10, 20 and 30 of the cones falling onto the ground and each other: the pairs
+  // near contact by then.
+  const std::size_t at = out.find("audit: ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stoi(out.substr(at + 7)) > 0);
+  CHECK(fs::exists(archive));
   fs::remove_all(dir);
 }
