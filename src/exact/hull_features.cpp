@@ -86,14 +86,23 @@ void unique_directions(std::vector<Vec3>& d) {
   d.erase(std::unique(d.begin(), d.end()), d.end());
 }
 
-/// Puts the faces (and their normals) in the lexicographic order of the normals: the order in
-/// which CGAL's hull lists its faces can change from run to run (it varied with the thread a
-/// cloud was hulled on), and SAT's early exit counts axes in this order.
+/// Puts the faces (and their normals) in the lexicographic order of the normals, faces whose
+/// rounded normals are bitwise equal in the lexicographic order of their vertex loops: the
+/// order in which CGAL's hull lists its faces depends on heap addresses (it varied with the
+/// thread a cloud was hulled on, and with the allocations made before the hull), and SAT's
+/// early exit counts axes in this order. The tie-break is needed: two adjacent triangles of a
+/// nearly flat quad (a UV sphere's) are distinct faces whose exact normals round to the same
+/// double, and sums over the faces in either order (a body's centre of mass) differ in the
+/// last bit. Loops are canonical (sorted vertices, each loop starting at its smallest index)
+/// and distinct faces have distinct loops, so the order is total.
 void sort_faces_by_normal(HullFeatures& out) {
   std::vector<std::size_t> order(out.face_normals.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-    return lex_less(out.face_normals[i], out.face_normals[j]);
+    const Vec3& a = out.face_normals[i];
+    const Vec3& b = out.face_normals[j];
+    if (a != b) return lex_less(a, b);
+    return out.faces[i] < out.faces[j];
   });
   std::vector<Vec3> normals;
   std::vector<std::vector<int>> faces;

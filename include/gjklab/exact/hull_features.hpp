@@ -21,7 +21,9 @@
 //                polygon edge (edge × m, one per edge, in edge order); `faces` holds the polygon
 //                twice (counter-clockwise seen from m, then from −m).
 //   dimension 3: one outward normal per face of the polytope, faces in the lexicographic order
-//                of their normals, vertices in lexicographic order, each face loop starting at
+//                of their normals (faces whose normals round to the same double, such as the
+//                two triangles of a nearly flat quad, in the order of their vertex loops),
+//                vertices in lexicographic order, each face loop starting at
 //                its smallest vertex index, edges as sorted (smaller, larger) index pairs: a
 //                canonical form, whatever order the hull came in (CGAL's order depends on heap
 //                addresses, and FCL's answers depend on the vertex order).
