@@ -120,12 +120,15 @@ struct Split {
 };
 
 Split split(double x, long exponent) {
-  int e = 0;
-  const double fraction = std::frexp(x, &e);  // x = fraction·2^e, 0.5 ≤ |fraction| < 1
+  // From the encoding: x = ±M·2^e with M the 52 stored bits plus the hidden one (none for
+  // subnormals). frexp and ldexp are library calls that cost more than the rest here.
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const auto biased = static_cast<long>((bits >> 52) & 0x7FF);
   Split out;
-  out.negative = fraction < 0;
-  out.mantissa = static_cast<std::uint64_t>(std::ldexp(std::abs(fraction), 53));  // exact
-  const long shift = static_cast<long>(e) - 53 - exponent;
+  out.negative = (bits >> 63) != 0;
+  out.mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  if (biased != 0) out.mantissa |= std::uint64_t{1} << 52;
+  const long shift = (biased == 0 ? -1074 : biased - 1075) - exponent;
   if (shift < 0) {
     // Only exact when the mantissa's low −shift bits are zero (fewer significant bits).
     if (-shift >= 64 || (out.mantissa & ((std::uint64_t{1} << -shift) - 1)) != 0)

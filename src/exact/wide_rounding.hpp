@@ -10,6 +10,7 @@
 // range or beyond the double range are left to the GMP conversions (nullopt).
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -42,22 +43,30 @@ inline void midpoints_of(double r, Midpoint& below, Midpoint& above) {
       R == (std::uint64_t{1} << 52) ? Midpoint{4 * R - 1, e - 55L} : Midpoint{2 * R - 1, e - 54L};
 }
 
-/// The midpoint as a long double (exact: M has at most 55 bits).
-inline long double value_of(const Midpoint& mid) {
-  return std::ldexp(static_cast<long double>(mid.m), static_cast<int>(mid.k));
-}
-
 /// Relative error bound of the long double estimates: 2^-60 (see the file comment), doubled.
 constexpr long double kEstimateError = 0x1p-59L;
 
-/// True when the estimate q of t (|t − q| ≤ kEstimateError·q) shows that t lies strictly
-/// between the midpoints around r = q rounded.
-inline bool clearly_nearest(long double q, double r) {
-  if (!std::isnormal(r) || r > std::numeric_limits<double>::max() / 4) return false;
-  Midpoint below, above;
-  midpoints_of(r, below, above);
+/// 2^e as a double, for −1022 ≤ e ≤ 1023 (built from its bits: ldexp is a library call that
+/// costs more than the rest of a rounding).
+inline double power_of_two(long e) {
+  return std::bit_cast<double>(static_cast<std::uint64_t>(e + 1023) << 52);
+}
+
+/// The double nearest to t = q·2^e when the estimate q of t·2^-e (0.25 ≤ q < 4, relative error
+/// at most kEstimateError) shows it: q rounded to 53 bits is r, and q's error interval lies
+/// strictly between the midpoints around r (r ± half its spacing, exact in long double). Scaled
+/// by 2^e, which is exact in the normal range (|e| ≤ 1000 keeps it there). nullopt otherwise.
+inline std::optional<double> clearly_rounded(long double q, long e) {
+  if (e < -1000 || e > 1000) return std::nullopt;
+  const double r = static_cast<double>(q);
+  const auto bits = std::bit_cast<std::uint64_t>(r);
+  const long lsb = static_cast<long>(bits >> 52) - 1075;  // r is a multiple of 2^lsb
+  const bool power = (bits & ((std::uint64_t{1} << 52) - 1)) == 0;
+  const long double above = static_cast<long double>(r) + power_of_two(lsb - 1);
+  const long double below = static_cast<long double>(r) - power_of_two(power ? lsb - 2 : lsb - 1);
   const long double margin = kEstimateError * q;
-  return value_of(below) < q - margin && q + margin < value_of(above);
+  if (!(below < q - margin && q + margin < above)) return std::nullopt;
+  return r * power_of_two(e);
 }
 
 /// Proves or corrects the estimate r of a positive value t: `side(mid)` is sign(t − mid).
@@ -94,10 +103,9 @@ inline std::optional<double> nearest_quotient(const Wide& num, const Wide& den, 
   long en = 0, ed = 0;
   const long double q = n.magnitude_2exp(&en) / d.magnitude_2exp(&ed);
   const long e = en - ed + exponent;
+  if (const std::optional<double> r = clearly_rounded(q, e)) return negative ? -*r : *r;
   if (e < -1000 || e > 1000) return std::nullopt;
-  const long double scaled = std::ldexp(q, static_cast<int>(e));
-  const double estimate = static_cast<double>(scaled);
-  if (clearly_nearest(scaled, estimate)) return negative ? -estimate : estimate;
+  const double estimate = static_cast<double>(std::ldexp(q, static_cast<int>(e)));
   // t − M·2^k ⋚ 0  ⇔  n·2^exponent ⋚ M·d·2^k.
   const auto side = [&](const Midpoint& mid) {
     return compare_scaled(n, exponent, Wide::shifted(mid.m, false, 0) * d, mid.k);
@@ -117,10 +125,10 @@ inline std::optional<double> nearest_sqrt(const Wide& num, const Wide& den, long
     q *= 2;
     --e;
   }
+  const long double root = std::sqrt(q);
+  if (const std::optional<double> r = clearly_rounded(root, e / 2)) return *r;
   if (e < -2000 || e > 2000) return std::nullopt;
-  const long double root = std::ldexp(std::sqrt(q), static_cast<int>(e / 2));
-  const double estimate = static_cast<double>(root);
-  if (clearly_nearest(root, estimate)) return estimate;
+  const double estimate = static_cast<double>(std::ldexp(root, static_cast<int>(e / 2)));
   // √t' − M·2^k ⋚ 0  ⇔  num·2^exponent ⋚ M²·den·2^(2k).
   const auto side = [&](const Midpoint& mid) {
     const Wide m = Wide::shifted(mid.m, false, 0);
