@@ -3,8 +3,10 @@
 #include <hdf5.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -86,6 +88,7 @@ hid_t native_type() {
   if constexpr (std::is_same_v<T, double>) return H5T_NATIVE_DOUBLE;
   if constexpr (std::is_same_v<T, std::int64_t>) return H5T_NATIVE_INT64;
   if constexpr (std::is_same_v<T, std::uint32_t>) return H5T_NATIVE_UINT32;
+  if constexpr (std::is_same_v<T, std::int32_t>) return H5T_NATIVE_INT32;
   if constexpr (std::is_same_v<T, std::uint8_t>) return H5T_NATIVE_UINT8;
 }
 
@@ -156,6 +159,43 @@ Closer make_group(const H5& h, hid_t parent, const std::string& name) {
   return {h.check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                   "cannot create group " + name),
           H5Gclose};
+}
+
+/// A whole dataset (any rank) as a flat vector, converted to T by HDF5.
+template <class T>
+std::vector<T> read_column(const H5& h, hid_t file, const std::string& name) {
+  Closer ds{h.check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "no dataset " + name), H5Dclose};
+  Closer space{h.check(H5Dget_space(ds.id), "dataspace " + name), H5Sclose};
+  const hssize_t n = H5Sget_simple_extent_npoints(space.id);
+  if (n < 0) h.fail("cannot size " + name);
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (n > 0 && H5Dread(ds.id, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    h.fail("cannot read " + name);
+  return out;
+}
+
+bool has_dataset(hid_t file, const std::string& name) {
+  return H5Lexists(file, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::string read_string_attribute(const H5& h, hid_t obj, const std::string& name) {
+  Closer a{h.check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute " + name), H5Aclose};
+  Closer type{h.check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose};
+  H5Tset_size(type.id, H5T_VARIABLE);
+  H5Tset_cset(type.id, H5T_CSET_UTF8);
+  char* p = nullptr;
+  if (H5Aread(a.id, type.id, &p) < 0 || !p) h.fail("cannot read attribute " + name);
+  std::string out(p);
+  H5free_memory(p);
+  return out;
+}
+
+template <class T>
+T read_number_attribute(const H5& h, hid_t obj, const std::string& name) {
+  Closer a{h.check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute " + name), H5Aclose};
+  T value{};
+  if (H5Aread(a.id, native_type<T>(), &value) < 0) h.fail("cannot read attribute " + name);
+  return value;
 }
 
 // ---- the run ----
@@ -253,26 +293,70 @@ void record_frame(const scene::World& w, const scene::StepStats& st, double size
   f.solver_ns.push_back(st.solver_ns);
 }
 
-/// Steps the scene; stops early (reported) if the state stops being finite.
-Recording simulate(SceneSetup& s, std::int64_t frames, std::int64_t& done) {
-  Recording r;
+/// Set by the first SIGINT or SIGTERM while a scene runs; a second one gets the default action.
+std::atomic<bool> stop_requested{false};
+
+extern "C" void on_simulate_stop_signal(int signal) {
+  stop_requested = true;
+  std::signal(signal, SIG_DFL);
+}
+
+/// While alive, SIGINT and SIGTERM ask the simulation to stop after the current frame and
+/// leave a checkpoint to resume from.
+class StopSignals {
+ public:
+  StopSignals()
+      : previous_int_(std::signal(SIGINT, on_simulate_stop_signal)),
+        previous_term_(std::signal(SIGTERM, on_simulate_stop_signal)) {}
+  ~StopSignals() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+enum class Outcome { finished, stopped, not_finite };
+
+/// Where a run stands and when it writes checkpoints.
+struct Progress {
+  std::int64_t done = 0;        ///< frames simulated
+  std::int64_t target = 0;      ///< frames the run is to reach
+  std::int64_t checkpoint = 0;  ///< frames between checkpoints (0: none)
+  std::int64_t stop_after = 0;  ///< stop after this many frames of this invocation (0: never)
+};
+
+/// Steps the scene from p.done to p.target; stops early when the state stops being finite, on
+/// a stop signal or after p.stop_after frames. `checkpoint` is called every p.checkpoint frames.
+template <class Checkpoint>
+Outcome simulate(SceneSetup& s, Recording& r, Progress& p, Checkpoint&& checkpoint) {
   BroadPhaseComparison compare;
   SceneAudit audit(s.audit_depth);
   scene::World& w = *s.world;
-  record_poses(w, 0, r.poses);
-  for (done = 0; done < frames;) {
-    const bool audited = s.audit_every > 0 && (done + 1) % s.audit_every == 0;
+  if (p.done == 0) record_poses(w, 0, r.poses);
+  const std::int64_t first = p.done;
+  while (p.done < p.target) {
+    const std::int64_t frame = p.done + 1;
+    const bool audited = s.audit_every > 0 && frame % s.audit_every == 0;
     if (audited) audit.before_step(w);
     const scene::StepStats st = w.step();
-    ++done;
-    if (audited) audit.after_step(w, done, r.audit);
+    p.done = frame;
+    if (audited) audit.after_step(w, frame, r.audit);
     record_frame(w, st, s.body_size, r.frames);
     if (s.compare_broad_phases) compare.run(w, r.frames);
-    if (done % s.pose_every == 0) record_poses(w, done, r.poses);
-    if (done % s.contacts_every == 0) record_contacts(w, done, r.contacts);
-    if (!w.finite()) break;
+    if (frame % s.pose_every == 0) record_poses(w, frame, r.poses);
+    if (frame % s.contacts_every == 0) record_contacts(w, frame, r.contacts);
+    if (!w.finite()) return Outcome::not_finite;
+    if (p.done == p.target) break;
+    if (stop_requested || (p.stop_after > 0 && p.done - first >= p.stop_after))
+      return Outcome::stopped;
+    if (p.checkpoint > 0 && p.done % p.checkpoint == 0) checkpoint();
   }
-  return r;
+  return Outcome::finished;
 }
 
 void write_frames(const H5& h, hid_t file, const FrameRows& f, bool compared) {
@@ -368,29 +452,216 @@ void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string&
   number_attribute<std::uint8_t>(h, file, "warm_start", st.warm_start ? 1 : 0);
 }
 
-/// Writes FILE.tmp and renames it to FILE once every dataset and the completion flag are in.
+// ---- checkpoints: the world's state, and the recording read back ----
+
+/// The state a resumed run needs beyond the recording: every body's pose and velocities and
+/// the world's carried state (pairs' simplices and impulses, clock), in state/.
+void write_state(const H5& h, hid_t file, const scene::World& w, std::int64_t target) {
+  Closer g = make_group(h, file, "state");
+  std::vector<double> position, orientation, velocity, angular_velocity;  // 3, 4 (x y z w), 3, 3
+  std::vector<std::uint8_t> touching;
+  for (const scene::RigidBody& b : w.bodies()) {
+    position.insert(position.end(), b.pose.translation.data(), b.pose.translation.data() + 3);
+    orientation.insert(orientation.end(), b.orientation.coeffs().data(),
+                       b.orientation.coeffs().data() + 4);
+    velocity.insert(velocity.end(), b.velocity.data(), b.velocity.data() + 3);
+    angular_velocity.insert(angular_velocity.end(), b.angular_velocity.data(),
+                            b.angular_velocity.data() + 3);
+    touching.push_back(b.touching ? 1 : 0);
+  }
+  write_column(h, g.id, "position", position, 3);
+  write_column(h, g.id, "orientation_xyzw", orientation, 4);
+  write_column(h, g.id, "velocity", velocity, 3);
+  write_column(h, g.id, "angular_velocity", angular_velocity, 3);
+  write_column(h, g.id, "touching", touching);
+  const scene::CarriedState c = w.carried_state();
+  number_attribute<double>(h, g.id, "time", c.time);
+  number_attribute<std::int64_t>(h, g.id, "steps", static_cast<std::int64_t>(c.steps));
+  number_attribute<std::int64_t>(h, g.id, "frames_target", target);
+  std::vector<std::uint32_t> pair_a, pair_b, simplex_size, point_count;
+  std::vector<double> w_, a_, b_, local, impulse;  // 3 per row
+  std::vector<std::int32_t> index_a, index_b;
+  for (const scene::PairState& ps : c.pairs) {
+    pair_a.push_back(ps.a);
+    pair_b.push_back(ps.b);
+    simplex_size.push_back(static_cast<std::uint32_t>(ps.simplex.size()));
+    point_count.push_back(static_cast<std::uint32_t>(ps.local_a.size()));
+    for (const SimplexVertex& v : ps.simplex) {
+      w_.insert(w_.end(), v.w.data(), v.w.data() + 3);
+      a_.insert(a_.end(), v.a.data(), v.a.data() + 3);
+      b_.insert(b_.end(), v.b.data(), v.b.data() + 3);
+      index_a.push_back(v.index_a);
+      index_b.push_back(v.index_b);
+    }
+    for (std::size_t k = 0; k < ps.local_a.size(); ++k) {
+      local.insert(local.end(), ps.local_a[k].data(), ps.local_a[k].data() + 3);
+      impulse.insert(impulse.end(), ps.impulses[k].begin(), ps.impulses[k].end());
+    }
+  }
+  write_column(h, g.id, "pair_a", pair_a);
+  write_column(h, g.id, "pair_b", pair_b);
+  write_column(h, g.id, "simplex_size", simplex_size);
+  write_column(h, g.id, "point_count", point_count);
+  write_column(h, g.id, "simplex_w", w_, 3);
+  write_column(h, g.id, "simplex_a", a_, 3);
+  write_column(h, g.id, "simplex_b", b_, 3);
+  write_column(h, g.id, "simplex_index_a", index_a);
+  write_column(h, g.id, "simplex_index_b", index_b);
+  write_column(h, g.id, "point_local_a", local, 3);
+  write_column(h, g.id, "point_impulse", impulse, 3);
+}
+
+Vec3 vec3_at(const std::vector<double>& v, std::size_t row) {
+  return Vec3(v.at(3 * row), v.at(3 * row + 1), v.at(3 * row + 2));
+}
+
+/// Restores what write_state wrote into a world built from the same scene; returns the run's
+/// target frame count.
+std::int64_t read_state(const H5& h, hid_t file, scene::World& w) {
+  auto col = [&](const char* name) {
+    return read_column<double>(h, file, "state/" + std::string(name));
+  };
+  const auto position = col("position"), orientation = col("orientation_xyzw"),
+             velocity = col("velocity"), angular_velocity = col("angular_velocity");
+  const auto touching = read_column<std::uint8_t>(h, file, "state/touching");
+  auto& bodies = w.bodies();
+  if (touching.size() != bodies.size() || orientation.size() != 4 * bodies.size())
+    h.fail("state/ does not match the scene's " + std::to_string(bodies.size()) + " bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    scene::RigidBody& b = bodies[i];
+    b.pose.translation = vec3_at(position, i);
+    // Quat(w, x, y, z): the integrator's own quaternion, so the rotation is recomputed as it was.
+    b.orientation = Quat(orientation[4 * i + 3], orientation[4 * i], orientation[4 * i + 1],
+                         orientation[4 * i + 2]);
+    b.pose.rotation = b.orientation.toRotationMatrix();
+    b.velocity = vec3_at(velocity, i);
+    b.angular_velocity = vec3_at(angular_velocity, i);
+    b.touching = touching[i] != 0;
+  }
+  Closer g{h.check(H5Gopen2(file, "state", H5P_DEFAULT), "no group state"), H5Gclose};
+  scene::CarriedState c;
+  c.time = read_number_attribute<double>(h, g.id, "time");
+  c.steps = static_cast<std::uint64_t>(read_number_attribute<std::int64_t>(h, g.id, "steps"));
+  const auto pair_a = read_column<std::uint32_t>(h, file, "state/pair_a");
+  const auto pair_b = read_column<std::uint32_t>(h, file, "state/pair_b");
+  const auto simplex_size = read_column<std::uint32_t>(h, file, "state/simplex_size");
+  const auto point_count = read_column<std::uint32_t>(h, file, "state/point_count");
+  const auto sw = col("simplex_w"), sa = col("simplex_a"), sb = col("simplex_b");
+  const auto index_a = read_column<std::int32_t>(h, file, "state/simplex_index_a");
+  const auto index_b = read_column<std::int32_t>(h, file, "state/simplex_index_b");
+  const auto local = col("point_local_a"), impulse = col("point_impulse");
+  std::size_t v = 0, q = 0;
+  try {
+    for (std::size_t k = 0; k < pair_a.size(); ++k) {
+      scene::PairState ps;
+      ps.a = pair_a.at(k);
+      ps.b = pair_b.at(k);
+      for (std::uint32_t j = 0; j < simplex_size.at(k); ++j, ++v)
+        ps.simplex.push_back(
+            {vec3_at(sw, v), vec3_at(sa, v), vec3_at(sb, v), index_a.at(v), index_b.at(v)});
+      for (std::uint32_t j = 0; j < point_count.at(k); ++j, ++q) {
+        ps.local_a.push_back(vec3_at(local, q));
+        ps.impulses.push_back({impulse.at(3 * q), impulse.at(3 * q + 1), impulse.at(3 * q + 2)});
+      }
+      c.pairs.push_back(std::move(ps));
+    }
+    w.restore(c);
+  } catch (const std::exception& e) {
+    h.fail(std::string("state/ is inconsistent: ") + e.what());
+  }
+  return read_number_attribute<std::int64_t>(h, g.id, "frames_target");
+}
+
+/// The recording so far, as write_archive wrote it.
+Recording read_recording(const H5& h, hid_t file, const SceneSetup& s) {
+  Recording r;
+  auto d = [&](const std::string& n) { return read_column<double>(h, file, n); };
+  auto i64 = [&](const std::string& n) { return read_column<std::int64_t>(h, file, n); };
+  auto u32 = [&](const std::string& n) { return read_column<std::uint32_t>(h, file, n); };
+  auto u8 = [&](const std::string& n) { return read_column<std::uint8_t>(h, file, n); };
+  FrameRows& f = r.frames;
+  f.time = d("frames/time");
+  f.kinetic_energy = d("frames/kinetic_energy");
+  f.potential_energy = d("frames/potential_energy");
+  f.max_penetration = d("frames/max_penetration");
+  f.contacts = i64("frames/contacts");
+  f.candidate_pairs = i64("frames/candidate_pairs");
+  f.narrow_queries = i64("frames/narrow_queries");
+  f.epa_queries = i64("frames/epa_queries");
+  f.failed_queries = i64("frames/failed_queries");
+  f.broadphase_ns = i64("frames/broadphase_ns");
+  f.narrowphase_ns = i64("frames/narrowphase_ns");
+  f.solver_ns = i64("frames/solver_ns");
+  f.iterations_mean = d("frames/iterations_mean");
+  f.iterations_cold_mean = d("frames/iterations_cold_mean");
+  if (s.compare_broad_phases) {
+    f.all_pairs_ns = i64("frames/all_pairs_ns");
+    f.grid_ns = i64("frames/grid_ns");
+    f.sap_ns = i64("frames/sap_ns");
+    if (has_dataset(file, "frames/dbvt_ns")) f.dbvt_ns = i64("frames/dbvt_ns");
+    f.broad_phases_agree = u8("frames/broad_phases_agree");
+  }
+  PoseRows& p = r.poses;
+  p.frame = i64("bodies/pose_frame");
+  p.body = u32("bodies/pose_body");
+  p.position = d("bodies/position");
+  p.orientation = d("bodies/orientation");
+  p.velocity = d("bodies/velocity");
+  p.touching = u8("bodies/touching");
+  ContactRows& c = r.contacts;
+  c.frame = i64("contacts/frame");
+  c.a = u32("contacts/body_a");
+  c.b = u32("contacts/body_b");
+  c.point = d("contacts/point");
+  c.normal = d("contacts/normal");
+  c.depth = d("contacts/depth");
+  c.normal_impulse = d("contacts/normal_impulse");
+  if (s.audit_every > 0) {
+    AuditRows& a = r.audit;
+    a.frame = i64("audit/frame");
+    a.a = u32("audit/body_a");
+    a.b = u32("audit/body_b");
+    a.intersect = u8("audit/intersect");
+    a.certified = u8("audit/certified");
+    a.distance = d("audit/distance");
+    a.depth = d("audit/depth");
+    a.narrow_depth = d("audit/narrow_depth");
+  }
+  return r;
+}
+
+std::string checkpoint_path(const std::string& path) {
+  return path + ".tmp";
+}
+
+/// Writes the archive to FILE.tmp.writing, then renames it: to FILE, complete, when the run is
+/// over (removing its checkpoint), or to FILE.tmp, with state/ and complete = 0, as a
+/// checkpoint. A kill while writing leaves the previous checkpoint intact.
 void write_archive(const std::string& path, const SceneSetup& s, const std::string& scene_path,
-                   const Recording& r, std::int64_t frames_done, bool finite) {
-  const std::string temp = path + ".tmp";
+                   const Recording& r, const Progress& p, bool finite, bool complete) {
+  const std::string writing = path + ".tmp.writing";
   const H5 h(path);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   {
-    Closer file{h.check(H5Fcreate(temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                        "cannot create " + temp),
+    Closer file{h.check(H5Fcreate(writing.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                        "cannot create " + writing),
                 H5Fclose};
-    write_root(h, file.id, s, scene_path, frames_done);
+    write_root(h, file.id, s, scene_path, p.done);
     write_frames(h, file.id, r.frames, s.compare_broad_phases);
     write_bodies(h, file.id, s, r.poses);
     write_contacts(h, file.id, r.contacts);
     if (s.audit_every > 0) write_audit(h, file.id, r.audit);
+    if (!complete) write_state(h, file.id, *s.world, p.target);
     number_attribute<std::uint8_t>(h, file.id, "finite", finite ? 1 : 0);
     // Written last: a reader that sees complete = 1 sees every dataset.
-    number_attribute<std::uint8_t>(h, file.id, "complete", 1);
-    if (H5Fflush(file.id, H5F_SCOPE_GLOBAL) < 0) h.fail("cannot flush " + temp);
+    number_attribute<std::uint8_t>(h, file.id, "complete", complete ? 1 : 0);
+    if (H5Fflush(file.id, H5F_SCOPE_GLOBAL) < 0) h.fail("cannot flush " + writing);
   }
+  const std::string target = complete ? path : checkpoint_path(path);
   std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) h.fail("cannot rename " + temp + ": " + ec.message());
+  fs::rename(writing, target, ec);
+  if (ec) h.fail("cannot rename " + writing + ": " + ec.message());
+  if (complete) fs::remove(checkpoint_path(path), ec);
 }
 
 /// The audit in three numbers: pairs, the share certified, and the narrow phase's largest
@@ -419,6 +690,84 @@ double mean(const std::vector<double>& v, const std::vector<std::int64_t>& weigh
   return n > 0 ? sum / n : 0;
 }
 
+/// Prints the end of a run (or where its checkpoint was left); the command's exit status.
+int report(const SceneSetup& s, const std::string& path, const Recording& r, const Progress& p,
+           Outcome outcome, std::ostream& out, std::ostream& err) {
+  if (outcome == Outcome::stopped) {
+    err << "gjklab simulate: stopped after frame " << p.done << " of " << p.target << ": "
+        << checkpoint_path(path) << " (continue with gjklab simulate --resume "
+        << checkpoint_path(path) << ")\n";
+    return stop_requested ? 130 : 0;
+  }
+  const FrameRows& f = r.frames;
+  double max_pen = 0;
+  for (double x : f.max_penetration)
+    max_pen = std::max(max_pen, x);
+  out << "scene " << s.name << ": " << s.world->bodies().size() << " bodies, " << p.done
+      << " frames (" << f.time.back() << " s)\n"
+      << "  max penetration / body size: " << max_pen << "\n"
+      << "  mean GJK iterations: " << mean(f.iterations_mean, f.narrow_queries);
+  if (s.world->settings().measure_cold)
+    out << " (cold: " << mean(f.iterations_cold_mean, f.narrow_queries) << ")";
+  if (s.audit_every > 0) print_audit(r.audit, out);
+  out << "\n  archive: " << path << "\n";
+  if (outcome == Outcome::not_finite) {
+    err << "gjklab simulate: the state stopped being finite at frame " << p.done << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+/// Runs from p.done to p.target with checkpoints, and writes the archive or the checkpoint.
+int run_and_write(SceneSetup& s, const std::string& path, const std::string& scene_path,
+                  Recording& r, Progress& p, std::ostream& out, std::ostream& err) {
+  const StopSignals signals;
+  const Outcome outcome =
+      simulate(s, r, p, [&] { write_archive(path, s, scene_path, r, p, true, false); });
+  const bool finite = s.world->finite();
+  write_archive(path, s, scene_path, r, p, finite, outcome != Outcome::stopped);
+  return report(s, path, r, p, outcome, out, err);
+}
+
+/// The archive path a checkpoint belongs to: FILE.h5 for FILE.h5.tmp (or FILE.h5 itself).
+std::string final_path_of(const std::string& given) {
+  const std::string suffix = ".tmp";
+  if (given.size() > suffix.size() &&
+      given.compare(given.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return given.substr(0, given.size() - suffix.size());
+  return given;
+}
+
+int resume(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
+  const std::string path = final_path_of(args.resume);
+  const std::string tmp = checkpoint_path(path);
+  if (!fs::exists(tmp)) {
+    err << "gjklab simulate: no checkpoint " << tmp << " to resume\n";
+    return 1;
+  }
+  const H5 h(tmp);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  std::string scene_path;
+  SceneSetup s;
+  Recording r;
+  Progress p;
+  {
+    Closer file{h.check(H5Fopen(tmp.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + tmp),
+                H5Fclose};
+    if (read_string_attribute(h, file.id, "format") != "gjklab-scene")
+      h.fail("not a scene archive");
+    scene_path = read_string_attribute(h, file.id, "scene_file");
+    // The scene as the interrupted run read it (the file may have changed since).
+    s = parse_scene(read_string_attribute(h, file.id, "scene_toml"), scene_path);
+    r = read_recording(h, file.id, s);
+    p.done = read_number_attribute<std::int64_t>(h, file.id, "frames");
+    p.target = read_state(h, file.id, *s.world);
+  }
+  p.checkpoint = args.checkpoint;
+  p.stop_after = args.stop_after;
+  return run_and_write(s, path, scene_path, r, p, out, err);
+}
+
 }  // namespace
 
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
@@ -426,44 +775,50 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
       "simulate",
       "step a scene of rigid bodies (broad phase, warm-started GJK, contacts) and "
       "write its HDF5 archive");
-  cmd->add_option("scene", args.scene, "scene file (TOML)")->required();
+  cmd->add_option("scene", args.scene, "scene file (TOML)");
   cmd->add_option("--out", args.output, "archive path (default: results/<scene name>.h5)");
   cmd->add_option("--frames", args.frames, "frames to simulate (default: the file's `frames`)")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{100'000'000}));
   cmd->add_flag("--force", args.force, "overwrite an existing archive");
+  cmd->add_option("--resume", args.resume,
+                  "continue an interrupted run (FILE.h5.tmp) from its last checkpoint");
+  cmd->add_option(
+         "--checkpoint", args.checkpoint,
+         "frames between checkpoints (default " + std::to_string(args.checkpoint) + "; 0: none)")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{100'000'000}));
+  cmd->add_option("--stop-after", args.stop_after,
+                  "stop after N frames, leaving a checkpoint to --resume (runs in parts)")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{100'000'000}));
   return cmd;
 }
 
 int run_simulate_command(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
+  stop_requested = false;
   try {
+    if (args.scene.empty() == args.resume.empty()) {
+      err << "gjklab simulate: give a scene file, or --resume FILE (not both)\n";
+      return 1;
+    }
+    if (!args.resume.empty()) {
+      if (!args.output.empty() || args.frames > 0 || args.force) {
+        err << "gjklab simulate: --resume continues the run as it was planned; --out, --frames "
+               "and --force do not apply\n";
+        return 1;
+      }
+      return resume(args, out, err);
+    }
     SceneSetup s = load_scene(args.scene);
     const std::string path = args.output.empty() ? "results/" + s.name + ".h5" : args.output;
     if (fs::exists(path) && !args.force) {
       err << "gjklab simulate: " << path << " exists (use --force to overwrite)\n";
       return 1;
     }
-    const std::int64_t frames = args.frames > 0 ? args.frames : s.frames;
-    std::int64_t done = 0;
-    const Recording r = simulate(s, frames, done);
-    const bool finite = s.world->finite();
-    write_archive(path, s, args.scene, r, done, finite);
-    const FrameRows& f = r.frames;
-    double max_pen = 0;
-    for (double p : f.max_penetration)
-      max_pen = std::max(max_pen, p);
-    out << "scene " << s.name << ": " << s.world->bodies().size() << " bodies, " << done
-        << " frames (" << f.time.back() << " s)\n"
-        << "  max penetration / body size: " << max_pen << "\n"
-        << "  mean GJK iterations: " << mean(f.iterations_mean, f.narrow_queries);
-    if (s.world->settings().measure_cold)
-      out << " (cold: " << mean(f.iterations_cold_mean, f.narrow_queries) << ")";
-    if (s.audit_every > 0) print_audit(r.audit, out);
-    out << "\n  archive: " << path << "\n";
-    if (!finite) {
-      err << "gjklab simulate: the state stopped being finite at frame " << done << "\n";
-      return 1;
-    }
-    return 0;
+    Recording r;
+    Progress p;
+    p.target = args.frames > 0 ? args.frames : s.frames;
+    p.checkpoint = args.checkpoint;
+    p.stop_after = args.stop_after;
+    return run_and_write(s, path, args.scene, r, p, out, err);
   } catch (const experiment::ConfigError& e) {
     err << "gjklab simulate: " << e.what() << "\n";
     return 1;

@@ -1,5 +1,7 @@
 // `gjklab simulate SCENE.toml`: steps a scene (scene_file.hpp) and writes its HDF5 archive:
-// frames/ one row per frame, bodies/ poses every k frames, contacts/ every k frames.
+// frames/ one row per frame, bodies/ poses every k frames, contacts/ every k frames. A run
+// stopped by SIGINT/SIGTERM (or --stop-after) or killed leaves FILE.h5.tmp, a checkpoint with
+// the world's state/, which --resume continues into the archive an uninterrupted run writes.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,10 @@ struct SimulateArgs {
   std::string output;       ///< default: results/<scene name>.h5
   std::int64_t frames = 0;  ///< 0: the file's
   bool force = false;
+  std::string resume;  ///< FILE.h5.tmp (or FILE.h5) of an interrupted run
+  /// Frames between checkpoints (FILE.h5.tmp rewritten with the world's state; 0: none).
+  std::int64_t checkpoint = 500;
+  std::int64_t stop_after = 0;  ///< stop after this many frames (0: run to the end)
 };
 
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);

@@ -339,6 +339,44 @@ void World::store_impulses(PairCache& cache, std::size_t first, std::size_t coun
   }
 }
 
+CarriedState World::carried_state() const {
+  CarriedState out;
+  out.time = time_;
+  out.steps = step_count_;
+  for (const auto& [key, cache] : cache_) {
+    PairState p;
+    p.a = static_cast<std::uint32_t>(key >> 32);
+    p.b = static_cast<std::uint32_t>(key & 0xffffffffu);
+    p.simplex = cache.simplex;
+    for (const CachedPoint& c : cache.points) {
+      p.local_a.push_back(c.local_a);
+      p.impulses.push_back({c.normal_impulse, c.tangent_impulse[0], c.tangent_impulse[1]});
+    }
+    out.pairs.push_back(std::move(p));
+  }
+  std::sort(out.pairs.begin(), out.pairs.end(), [](const PairState& x, const PairState& y) {
+    return pair_key(x.a, x.b) < pair_key(y.a, y.b);
+  });
+  return out;
+}
+
+void World::restore(const CarriedState& state) {
+  cache_.clear();
+  for (const PairState& p : state.pairs) {
+    if (p.a >= bodies_.size() || p.b >= bodies_.size() || p.local_a.size() != p.impulses.size())
+      throw std::invalid_argument("a saved pair names a body the world does not have");
+    PairCache& cache = cache_[pair_key(p.a, p.b)];
+    cache.simplex = p.simplex;
+    for (std::size_t k = 0; k < p.local_a.size(); ++k)
+      cache.points.push_back(
+          {p.local_a[k], p.impulses[k][0], {p.impulses[k][1], p.impulses[k][2]}});
+    // The pairs of the last step carry its number (narrow_phase drops the others).
+    cache.step = state.steps;
+  }
+  time_ = state.time;
+  step_count_ = state.steps;
+}
+
 void World::narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats) {
   contacts_.clear();
   pair_ranges_.clear();

@@ -1,13 +1,19 @@
 // `gjklab simulate`: scene files with errors naming file, line and key; a small scene run to
-// its archive; an existing archive kept without --force; the exact audit of a step's pairs.
+// its archive; an existing archive kept without --force; the exact audit of a step's pairs;
+// determinism whatever the file's comments; stopped and killed runs resumed.
+#include <hdf5.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -249,4 +255,150 @@ TEST_CASE("simulate: a comment in the scene file or the heap's history changes n
       CHECK(a[i].angular_velocity == b[i].angular_velocity);
     }
   }
+}
+
+namespace {
+
+/// The bytes of a numeric dataset in its native type (empty vector for an empty dataset).
+std::vector<unsigned char> dataset_bytes(hid_t file, const std::string& name) {
+  const hid_t ds = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+  REQUIRE(ds >= 0);
+  const hid_t type = H5Dget_type(ds);
+  const hid_t native = H5Tget_native_type(type, H5T_DIR_ASCEND);
+  const hid_t space = H5Dget_space(ds);
+  std::vector<unsigned char> out(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)) *
+                                 H5Tget_size(native));
+  if (!out.empty()) REQUIRE(H5Dread(ds, native, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0);
+  H5Sclose(space);
+  H5Tclose(native);
+  H5Tclose(type);
+  H5Dclose(ds);
+  return out;
+}
+
+/// Every dataset of two scene archives but the timings is bit for bit the same, and the second
+/// is complete and has no state/ left.
+void require_same_scene_archive(const std::string& x, const std::string& y) {
+  const hid_t fx = H5Fopen(x.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t fy = H5Fopen(y.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(fx >= 0);
+  REQUIRE(fy >= 0);
+  const std::vector<std::string> names = {"frames/time",
+                                          "frames/kinetic_energy",
+                                          "frames/potential_energy",
+                                          "frames/max_penetration",
+                                          "frames/contacts",
+                                          "frames/candidate_pairs",
+                                          "frames/narrow_queries",
+                                          "frames/epa_queries",
+                                          "frames/failed_queries",
+                                          "frames/iterations_mean",
+                                          "frames/iterations_cold_mean",
+                                          "frames/broad_phases_agree",
+                                          "bodies/mass",
+                                          "bodies/size",
+                                          "bodies/is_static",
+                                          "bodies/pose_frame",
+                                          "bodies/pose_body",
+                                          "bodies/position",
+                                          "bodies/orientation",
+                                          "bodies/velocity",
+                                          "bodies/touching",
+                                          "contacts/frame",
+                                          "contacts/body_a",
+                                          "contacts/body_b",
+                                          "contacts/point",
+                                          "contacts/normal",
+                                          "contacts/depth",
+                                          "contacts/normal_impulse",
+                                          "audit/frame",
+                                          "audit/body_a",
+                                          "audit/body_b",
+                                          "audit/intersect",
+                                          "audit/certified",
+                                          "audit/distance",
+                                          "audit/depth",
+                                          "audit/narrow_depth"};
+  for (const std::string& n : names) {
+    INFO(n);
+    CHECK(dataset_bytes(fx, n) == dataset_bytes(fy, n));
+  }
+  CHECK(dataset_bytes(fy, "frames/sap_ns").size() == dataset_bytes(fx, "frames/sap_ns").size());
+  CHECK(H5Lexists(fy, "state", H5P_DEFAULT) == 0);
+  std::uint8_t complete = 0;
+  const hid_t a = H5Aopen(fy, "complete", H5P_DEFAULT);
+  REQUIRE(a >= 0);
+  H5Aread(a, H5T_NATIVE_UINT8, &complete);
+  H5Aclose(a);
+  CHECK(complete == 1);
+  H5Fclose(fx);
+  H5Fclose(fy);
+}
+
+/// Runs `gjklab simulate` in a child process and stops it with `signal` once its first
+/// checkpoint is on disk; returns the child's exit status (-1 if the signal killed it).
+int simulate_until_signal(const std::vector<std::string>& args, const std::string& checkpoint,
+                          int signal) {
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    std::string out, err;
+    ::_exit(run_cli(args, out, err));
+  }
+  while (!fs::exists(checkpoint))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  ::kill(child, signal);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("simulate: a stopped or killed run resumes into the uninterrupted run's archive",
+          "[unit][scene]") {
+  const fs::path dir =
+      fs::temp_directory_path() / ("gjklab-scene-resume-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string scene = (dir / "tiny.toml").string();
+  std::ofstream(scene) << kScene << "\n[narrow_phase]\nmeasure_cold = true\n"
+                       << "\n[oracle]\naudit_every = 7\n";
+  const std::string full = (dir / "full.h5").string();
+  std::string out, err;
+  REQUIRE(run_cli({"simulate", scene, "--out", full}, out, err) == 0);
+
+  SECTION("in parts: --stop-after, then --resume twice") {
+    const std::string part = (dir / "part.h5").string();
+    REQUIRE(run_cli({"simulate", scene, "--out", part, "--checkpoint", "4", "--stop-after", "11"},
+                    out, err) == 0);
+    CHECK(err.find("stopped after frame 11 of 30") != std::string::npos);
+    CHECK(fs::exists(part + ".tmp"));
+    CHECK_FALSE(fs::exists(part));
+    REQUIRE(run_cli({"simulate", "--resume", part + ".tmp", "--stop-after", "9"}, out, err) == 0);
+    CHECK(err.find("stopped after frame 20 of 30") != std::string::npos);
+    REQUIRE(run_cli({"simulate", "--resume", part}, out, err) == 0);
+    CHECK(out.find("scene tiny: 4 bodies, 30 frames") != std::string::npos);
+    CHECK_FALSE(fs::exists(part + ".tmp"));
+    require_same_scene_archive(full, part);
+    // Nothing left to resume; --resume takes no other plan.
+    CHECK(run_cli({"simulate", "--resume", part}, out, err) == 1);
+    CHECK(run_cli({"simulate", scene, "--resume", part}, out, err) == 1);
+  }
+  SECTION("SIGINT and SIGKILL on a long run, checkpoint every frame") {
+    const std::string long_full = (dir / "long_full.h5").string();
+    REQUIRE(run_cli({"simulate", scene, "--out", long_full, "--frames", "3000"}, out, err) == 0);
+    for (int signal : {SIGINT, SIGKILL}) {
+      INFO("signal " << signal);
+      const std::string part = (dir / ("long_" + std::to_string(signal) + ".h5")).string();
+      const int status = simulate_until_signal(
+          {"simulate", scene, "--out", part, "--frames", "3000", "--checkpoint", "1"},
+          part + ".tmp", signal);
+      CHECK(status == (signal == SIGINT ? 130 : -1));
+      CHECK_FALSE(fs::exists(part));
+      REQUIRE(run_cli({"simulate", "--resume", part + ".tmp"}, out, err) == 0);
+      require_same_scene_archive(long_full, part);
+    }
+  }
+  fs::remove_all(dir);
 }

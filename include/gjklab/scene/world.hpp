@@ -22,6 +22,7 @@
 //  5. Positions: x += (v + v_pseudo) dt, q += ½ (ω + ω_pseudo) q dt, renormalised.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -105,6 +106,26 @@ struct StepStats {
   std::size_t failed_queries = 0;   ///< GJK or EPA stops other than converged
 };
 
+/// A pair's memory between steps: its final simplex (the next query's warm start) and its
+/// contact points with their impulses (the next solve's warm start).
+struct PairState {
+  std::uint32_t a = 0, b = 0;
+  std::vector<SimplexVertex> simplex;
+  /// Per contact point: where it lies in a's body frame (length units).
+  std::vector<Vec3> local_a;
+  /// Per contact point: normal impulse and the two tangent impulses (mass·length/s).
+  std::vector<std::array<double, 3>> impulses;
+};
+
+/// What a world carries from one step to the next besides its bodies' state: restored into a
+/// world built from the same scene, with the bodies' poses and velocities, the next step is bit
+/// for bit the one the saved world would have taken (an interrupted simulation resumes).
+struct CarriedState {
+  double time = 0;               ///< s
+  std::uint64_t steps = 0;       ///< steps taken
+  std::vector<PairState> pairs;  ///< sorted by (a, b)
+};
+
 class World {
  public:
   /// Throws std::invalid_argument for settings out of range.
@@ -116,6 +137,12 @@ class World {
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   const WorldSettings& settings() const { return settings_; }
   double time() const { return time_; }
+
+  /// The state carried between steps (see CarriedState).
+  CarriedState carried_state() const;
+  /// Replaces the carried state; the caller restores the bodies' poses and velocities. Throws
+  /// std::invalid_argument for a pair whose bodies do not exist.
+  void restore(const CarriedState& state);
 
   /// Advances by settings().dt; returns what the step did.
   StepStats step();
