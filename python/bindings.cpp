@@ -457,28 +457,33 @@ RunResult run(const std::string& experiment_path_or_text, std::optional<std::str
   return {report.output.string(), report.cases, report.seconds, report.complete, summary.str()};
 }
 
-}  // namespace
+/// Points as an n×3 float64 array.
+py::array_t<double> points_array(std::span<const Vec3> points) {
+  py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+  auto w = out.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < w.shape(0); ++i)
+    for (int k = 0; k < 3; ++k)
+      w(i, k) = points[static_cast<std::size_t>(i)][k];
+  return out;
+}
 
-}  // namespace gjklab::python
-
-PYBIND11_MODULE(_gjklab, m) {
-  using namespace gjklab::python;
-  namespace ex = gjklab::experiment;
-  m.doc() = "gjklab: GJK collision and distance algorithms, their peers and an exact oracle";
-
-  // Experiment-file errors read as the command line prints them, as ValueError.
+/// Experiment-file errors read as the command line prints them, as ValueError.
+void register_error_translator() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const ex::ConfigError& e) {
+    } catch (const experiment::ConfigError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const ex::RealObjectError& e) {
+    } catch (const experiment::RealObjectError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const ex::InputError& e) {
+    } catch (const experiment::InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
+}
 
+/// gjklab.Shape.
+void def_shape(py::module_& m) {
   py::class_<Shape>(m, "Shape",
                     "A shape built once from an n×3 float64 array (its convex hull), for many "
                     "queries: query() and exact() take it wherever they take an array")
@@ -489,22 +494,16 @@ PYBIND11_MODULE(_gjklab, m) {
              return Shape{std::make_shared<const gjklab::Polytope>(std::move(*polytope))};
            }),
            py::arg("points"))
-      .def_property_readonly(
-          "vertices",
-          [](const Shape& s) {
-            const auto v = s.polytope->vertices();
-            py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-            auto w = out.mutable_unchecked<2>();
-            for (py::ssize_t i = 0; i < w.shape(0); ++i)
-              for (int k = 0; k < 3; ++k)
-                w(i, k) = v[static_cast<std::size_t>(i)][k];
-            return out;
-          })
+      .def_property_readonly("vertices",
+                             [](const Shape& s) { return points_array(s.polytope->vertices()); })
       .def("__len__", [](const Shape& s) { return s.polytope->vertices().size(); })
       .def("__repr__", [](const Shape& s) {
         return "gjklab.Shape(" + std::to_string(s.polytope->vertices().size()) + " points)";
       });
+}
 
+/// gjklab.Result.
+void def_result(py::module_& m) {
   py::class_<QueryResult>(m, "Result", "One algorithm's answer (the JSON names of gjklab query)")
       .def_readonly("algorithm", &QueryResult::algorithm)
       .def_property_readonly("intersect", [](const QueryResult& r) { return r.outcome.intersect; })
@@ -535,7 +534,10 @@ PYBIND11_MODULE(_gjklab, m) {
       .def("__repr__", [](const QueryResult& r) {
         return "gjklab.Result(" + py::repr(query_dict(r)).cast<std::string>() + ")";
       });
+}
 
+/// gjklab.ExactAnswer.
+void def_exact_answer(py::module_& m) {
   py::class_<ExactResult>(m, "ExactAnswer", "The exact oracle's answer for two clouds")
       .def_property_readonly("intersect", [](const ExactResult& e) { return e.answer.intersect; })
       .def_property_readonly(
@@ -578,7 +580,10 @@ PYBIND11_MODULE(_gjklab, m) {
               ", depth_squared=" + a.depth_squared->numerator + "/" + a.depth_squared->denominator;
         return text + ", method='" + std::string(to_string(a.method)) + "')";
       });
+}
 
+/// gjklab.RunReport.
+void def_run_report(py::module_& m) {
   py::class_<RunResult>(m, "RunReport", "What gjklab.run did")
       .def_readonly("output", &RunResult::output)
       .def_readonly("cases", &RunResult::cases)
@@ -589,7 +594,10 @@ PYBIND11_MODULE(_gjklab, m) {
         return "gjklab.RunReport(output='" + r.output + "', cases=" + std::to_string(r.cases) +
                ", complete=" + (r.complete ? "True" : "False") + ")";
       });
+}
 
+/// The module's functions.
+void def_functions(py::module_& m) {
   m.def("query", &query, py::arg("a"), py::arg("b"), py::arg("algorithm") = "gjk-johnson",
         py::kw_only(), py::arg("radius_a") = 0.0, py::arg("radius_b") = 0.0,
         R"(Runs one algorithm on two point clouds (n×3 float64 arrays; their convex hulls are the
@@ -603,22 +611,14 @@ with depth=True) as fractions.Fraction, intersect, distance, hull vertex counts,
 answer was obtained (method: 'certified' or 'qp').)");
   m.def(
       "read_points",
-      [](const std::string& path) {
-        const std::vector<gjklab::Vec3> points = ex::read_point_file(path);
-        py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
-        auto w = out.mutable_unchecked<2>();
-        for (py::ssize_t i = 0; i < w.shape(0); ++i)
-          for (int k = 0; k < 3; ++k)
-            w(i, k) = points[static_cast<std::size_t>(i)][k];
-        return out;
-      },
+      [](const std::string& path) { return points_array(experiment::read_point_file(path)); },
       py::arg("path"),
       "The points of a .xyz, .off, .obj, .ply or .stl file (an n×3 float64 array), read as "
       "gjklab query reads them");
   m.def("algorithms", &algorithms,
         "Every registered algorithm: name -> kind, description, and its options with defaults");
   m.def("families", &families, "Every shape a [[family]] of an experiment can name");
-  m.def("real_objects", &ex::real_object_names,
+  m.def("real_objects", &experiment::real_object_names,
         "Names of the real objects (Debian package libcgal-demo), for shape = \"real_object\"");
   m.def("run", &run, py::arg("experiment"), py::kw_only(), py::arg("out") = py::none(),
         py::arg("threads") = py::none(), py::arg("cases") = py::none(), py::arg("force") = false,
@@ -626,4 +626,19 @@ answer was obtained (method: 'certified' or 'qp').)");
         R"(Runs an experiment (a TOML file's path, or TOML text) like `gjklab run` and writes its
 HDF5 archive (out: default the experiment's output). Returns a RunReport; read the archive with
 read_archive(). Ctrl-C stops the run, leaving a resumable archive.)");
+}
+
+}  // namespace
+
+}  // namespace gjklab::python
+
+PYBIND11_MODULE(_gjklab, m) {
+  using namespace gjklab::python;
+  m.doc() = "gjklab: GJK collision and distance algorithms, their peers and an exact oracle";
+  register_error_translator();
+  def_shape(m);
+  def_result(m);
+  def_exact_answer(m);
+  def_run_report(m);
+  def_functions(m);
 }
