@@ -424,13 +424,15 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
   SceneSetup s;
   s.text = text;
   const Table sc = root.child("scene");
-  sc.allow_only({"name", "seed", "frames", "pose_every", "contacts_every", "compare_broad_phases"});
+  sc.allow_only({"name", "seed", "frames", "pose_every", "contacts_every", "compare_broad_phases",
+                 "queries_every"});
   s.name = sc.string("name", "scene");
   s.seed = static_cast<std::uint64_t>(sc.integer("seed", 1, 0, INT64_MAX));
   s.frames = sc.integer("frames", 600, 1, kMaxFrames);
   s.pose_every = sc.integer("pose_every", 10, 1, kMaxFrames);
   s.contacts_every = sc.integer("contacts_every", 10, 1, kMaxFrames);
   s.compare_broad_phases = sc.boolean("compare_broad_phases", false);
+  s.queries_every = sc.integer("queries_every", 0, 0, kMaxFrames);
   const Table oracle = root.child("oracle");
   oracle.allow_only({"audit_every", "depth"});
   s.audit_every = oracle.integer("audit_every", 0, 0, kMaxFrames);

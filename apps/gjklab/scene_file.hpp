@@ -22,6 +22,9 @@ struct SceneSetup {
   std::int64_t contacts_every = 10;
   /// Time all three broad phases on every frame's boxes (and check they agree).
   bool compare_broad_phases = false;
+  /// Record the narrow-phase queries of every k-th frame (0: none) in queries/, with the
+  /// shapes' vertices in shapes/: the input of the experiments' `stream` family.
+  std::int64_t queries_every = 0;
   /// [oracle] audit_every: the exact answers of the pairs queried in every k-th frame
   /// (0: none); depth: also their exact penetration depths.
   std::int64_t audit_every = 0;

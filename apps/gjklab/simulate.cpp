@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Schema of the scene archive (documented in README.md, "Scenes"); bumped on any change.
-constexpr int kSceneSchemaVersion = 2;  // 2: frames/dbvt_ns, audit/
+constexpr int kSceneSchemaVersion = 3;  // 2: frames/dbvt_ns, audit/; 3: queries/, shapes/
 
 struct SimulationError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -55,6 +56,20 @@ struct ContactRows {
   std::vector<std::int64_t> frame;
   std::vector<std::uint32_t> a, b;
   std::vector<double> point, normal, depth, normal_impulse;  // 3, 3, 1, 1 per row
+};
+
+/// Columns of the queries/ table: one row per narrow-phase query of the recorded frames.
+struct QueryRows {
+  std::vector<std::int64_t> frame;
+  std::vector<std::uint32_t> a, b;
+  /// Per row, each body's pose at the step's start: the rotation's 9 entries (row-major), then
+  /// the translation; the query ran on every shape vertex v moved to rotation·v + translation.
+  std::vector<double> pose_a, pose_b;  // 12 per row
+  std::vector<std::uint8_t> warm_size;
+  std::vector<std::int32_t> warm_index_a, warm_index_b;  // 4 per row, −1 past warm_size
+  std::vector<std::int32_t> iterations;
+  std::vector<std::uint8_t> intersect;
+  std::vector<double> distance;
 };
 
 // ---- HDF5: a small writer of whole datasets (the run is held in memory until the end) ----
@@ -205,7 +220,33 @@ struct Recording {
   PoseRows poses;
   ContactRows contacts;
   AuditRows audit;
+  QueryRows queries;
 };
+
+void append_pose(const Pose& p, std::vector<double>& out) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      out.push_back(p.rotation(r, c));
+  out.insert(out.end(), p.translation.data(), p.translation.data() + 3);
+}
+
+/// The step's queries (logged by the world) with the poses the bodies had before it.
+void record_queries(const std::vector<Pose>& before, const std::vector<scene::QueryRecord>& log,
+                    std::int64_t frame, QueryRows& q) {
+  for (const scene::QueryRecord& r : log) {
+    q.frame.push_back(frame);
+    q.a.push_back(r.a);
+    q.b.push_back(r.b);
+    append_pose(before[r.a], q.pose_a);
+    append_pose(before[r.b], q.pose_b);
+    q.warm_size.push_back(static_cast<std::uint8_t>(r.warm_size));
+    q.warm_index_a.insert(q.warm_index_a.end(), r.warm_index_a.begin(), r.warm_index_a.end());
+    q.warm_index_b.insert(q.warm_index_b.end(), r.warm_index_b.begin(), r.warm_index_b.end());
+    q.iterations.push_back(r.iterations);
+    q.intersect.push_back(r.intersect ? 1 : 0);
+    q.distance.push_back(r.distance);
+  }
+}
 
 void record_poses(const scene::World& w, std::int64_t frame, PoseRows& r) {
   for (std::uint32_t i = 0; i < w.bodies().size(); ++i) {
@@ -338,14 +379,26 @@ Outcome simulate(SceneSetup& s, Recording& r, Progress& p, Checkpoint&& checkpoi
   SceneAudit audit(s.audit_depth);
   scene::World& w = *s.world;
   if (p.done == 0) record_poses(w, 0, r.poses);
+  std::vector<Pose> before;
+  std::vector<scene::QueryRecord> log;
   const std::int64_t first = p.done;
   while (p.done < p.target) {
     const std::int64_t frame = p.done + 1;
     const bool audited = s.audit_every > 0 && frame % s.audit_every == 0;
     if (audited) audit.before_step(w);
+    const bool logged = s.queries_every > 0 && frame % s.queries_every == 0;
+    if (logged) {
+      before.clear();
+      for (const scene::RigidBody& b : w.bodies())
+        before.push_back(b.pose);
+      log.clear();
+      w.record_queries(&log);
+    }
     const scene::StepStats st = w.step();
+    w.record_queries(nullptr);
     p.done = frame;
     if (audited) audit.after_step(w, frame, r.audit);
+    if (logged) record_queries(before, log, frame, r.queries);
     record_frame(w, st, s.body_size, r.frames);
     if (s.compare_broad_phases) compare.run(w, r.frames);
     if (frame % s.pose_every == 0) record_poses(w, frame, r.poses);
@@ -428,6 +481,42 @@ void write_audit(const H5& h, hid_t file, const AuditRows& a) {
   write_column(h, g.id, "narrow_depth", a.narrow_depth);
 }
 
+void write_queries(const H5& h, hid_t file, const SceneSetup& s, const QueryRows& q) {
+  Closer g = make_group(h, file, "queries");
+  write_column(h, g.id, "frame", q.frame);
+  write_column(h, g.id, "body_a", q.a);
+  write_column(h, g.id, "body_b", q.b);
+  write_column(h, g.id, "pose_a", q.pose_a, 12);
+  write_column(h, g.id, "pose_b", q.pose_b, 12);
+  write_column(h, g.id, "warm_size", q.warm_size);
+  write_column(h, g.id, "warm_index_a", q.warm_index_a, 4);
+  write_column(h, g.id, "warm_index_b", q.warm_index_b, 4);
+  write_column(h, g.id, "iterations", q.iterations);
+  write_column(h, g.id, "intersect", q.intersect);
+  write_column(h, g.id, "distance", q.distance);
+  // The shapes' body-frame vertices, each distinct shape once (in the order bodies first use
+  // them): shape k is vertices[offset[k], offset[k+1]), body i has shape body_shape[i].
+  Closer sg = make_group(h, file, "shapes");
+  std::vector<const scene::ConvexShape*> seen;
+  std::vector<std::uint32_t> body_shape;
+  std::vector<std::int64_t> offset{0};
+  std::vector<double> vertices;
+  for (const scene::RigidBody& b : s.world->bodies()) {
+    auto it = std::find(seen.begin(), seen.end(), b.shape.get());
+    if (it == seen.end()) {
+      seen.push_back(b.shape.get());
+      for (const Vec3& v : b.shape->polytope.vertices())
+        vertices.insert(vertices.end(), v.data(), v.data() + 3);
+      offset.push_back(static_cast<std::int64_t>(vertices.size() / 3));
+      it = seen.end() - 1;
+    }
+    body_shape.push_back(static_cast<std::uint32_t>(it - seen.begin()));
+  }
+  write_column(h, sg.id, "vertices", vertices, 3);
+  write_column(h, sg.id, "offset", offset);
+  write_column(h, sg.id, "body_shape", body_shape);
+}
+
 void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string& scene_path,
                 std::int64_t frames_done) {
   string_attribute(h, file, "format", "gjklab-scene");
@@ -443,6 +532,7 @@ void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string&
   number_attribute<std::int64_t>(h, file, "contacts_every", s.contacts_every);
   number_attribute<std::int64_t>(h, file, "audit_every", s.audit_every);
   number_attribute<std::uint8_t>(h, file, "audit_depth", s.audit_depth ? 1 : 0);
+  number_attribute<std::int64_t>(h, file, "queries_every", s.queries_every);
   number_attribute<double>(h, file, "body_size", s.body_size);
   const auto& st = s.world->settings();
   number_attribute<double>(h, file, "dt", st.dt);
@@ -627,6 +717,20 @@ Recording read_recording(const H5& h, hid_t file, const SceneSetup& s) {
     a.depth = d("audit/depth");
     a.narrow_depth = d("audit/narrow_depth");
   }
+  if (s.queries_every > 0) {
+    QueryRows& q = r.queries;
+    q.frame = i64("queries/frame");
+    q.a = u32("queries/body_a");
+    q.b = u32("queries/body_b");
+    q.pose_a = d("queries/pose_a");
+    q.pose_b = d("queries/pose_b");
+    q.warm_size = u8("queries/warm_size");
+    q.warm_index_a = read_column<std::int32_t>(h, file, "queries/warm_index_a");
+    q.warm_index_b = read_column<std::int32_t>(h, file, "queries/warm_index_b");
+    q.iterations = read_column<std::int32_t>(h, file, "queries/iterations");
+    q.intersect = u8("queries/intersect");
+    q.distance = d("queries/distance");
+  }
   return r;
 }
 
@@ -651,6 +755,7 @@ void write_archive(const std::string& path, const SceneSetup& s, const std::stri
     write_bodies(h, file.id, s, r.poses);
     write_contacts(h, file.id, r.contacts);
     if (s.audit_every > 0) write_audit(h, file.id, r.audit);
+    if (s.queries_every > 0) write_queries(h, file.id, s, r.queries);
     if (!complete) write_state(h, file.id, *s.world, p.target);
     number_attribute<std::uint8_t>(h, file.id, "finite", finite ? 1 : 0);
     // Written last: a reader that sees complete = 1 sees every dataset.

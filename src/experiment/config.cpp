@@ -5,6 +5,7 @@
 #include "gjklab/experiment/cloud_io.hpp"
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/real_objects.hpp"
+#include "gjklab/experiment/scene_stream.hpp"
 
 #include <toml++/toml.h>
 
@@ -454,13 +455,27 @@ void read_contact(const Section& s, FamilySpec& f) {
 }
 
 /// `path = "..."` of a file family: reads every pair now, so a bad file is a config error.
-void read_stored_pairs(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+/// `shape = "file"` (a cases file) or `shape = "stream"` (a scene archive's recorded queries,
+/// scene_stream.hpp): the pairs, read now so that a bad file is a config error.
+void read_stored_pairs(const Section& s, const std::string& experiment_file, FamilySpec& f,
+                       bool stream) {
   const auto path = s.string("path");
-  if (!path) s.missing("path", "missing (shape = \"file\" needs the cases file)");
+  if (!path)
+    s.missing("path", stream ? "missing (shape = \"stream\" needs a scene archive)"
+                             : "missing (shape = \"file\" needs the cases file)");
   f.path = *path;
   std::filesystem::path resolved(*path);
   if (resolved.is_relative())
     resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+  if (stream) {
+    try {
+      f.stored = read_scene_stream(resolved);
+    } catch (const InputError& e) {
+      s.fail(*s.find("path"), "path", e.what());
+    }
+    f.shape_a = f.shape_b = ShapeKind::from_file;
+    return;
+  }
   std::vector<CaseOrError> cases;
   try {
     cases = read_cases_file(resolved);
@@ -590,7 +605,8 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                               ? std::optional<std::string>(*s.string("shape"))
                               : std::nullopt;
   const bool is_contact = pair_shape == "contact";
-  const bool is_file = pair_shape == "file";
+  const bool is_stream = pair_shape == "stream";
+  const bool is_file = pair_shape == "file" || is_stream;
   const bool is_mesh = pair_shape == "mesh";
   const bool is_real_object = pair_shape == "real_object";
   if (!is_real_object && s.find("objects"))
@@ -599,14 +615,14 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     if (!is_contact && s.find(key))
       s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
   if (!is_file && !is_mesh && s.find("path"))
-    s.fail(*s.find("path"), "path", "applies only to shape = \"file\" or \"mesh\"");
+    s.fail(*s.find("path"), "path", "applies only to shape = \"file\", \"stream\" or \"mesh\"");
   for (std::string_view key : {"shape_a", "shape_b"})
     if (has_shape && s.find(key))
       s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
   if (is_contact) {
     read_contact(s, f);
   } else if (is_file) {
-    read_stored_pairs(s, experiment_file, f);
+    read_stored_pairs(s, experiment_file, f, is_stream);
   } else if (is_mesh) {
     read_meshes(s, experiment_file, f);
   } else if (is_real_object) {

@@ -598,6 +598,7 @@ std::span<const FamilyShapeInfo> family_shapes() {
       {"contact",
        "pairs built in exact contact (face-face, edge-edge, ...), then moved by epsilon"},
       {"file", "the pairs of a JSON-lines cases file (path)"},
+      {"stream", "the narrow-phase queries a scene archive recorded (path; cold, as queried)"},
       {"mesh", "the vertices of mesh files (path: one .off/.obj/.ply/.stl file or a folder)"},
       {"real_object",
        "convex hulls of the real meshes of Debian's libcgal-demo (objects: names or \"all\"), "

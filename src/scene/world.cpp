@@ -252,6 +252,18 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
   const DistanceResult r = run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
   ++stats.narrow_queries;
   iterations += r.iterations;
+  if (query_log_) {
+    QueryRecord q{ia, ib};
+    q.warm_size = static_cast<int>(warm.size());
+    for (std::size_t k = 0; k < warm.size() && k < 4; ++k) {
+      q.warm_index_a[k] = warm[k].index_a;
+      q.warm_index_b[k] = warm[k].index_b;
+    }
+    q.iterations = r.iterations;
+    q.intersect = r.intersect;
+    q.distance = r.distance;
+    query_log_->push_back(q);
+  }
   if (settings_.measure_cold)
     iterations_cold += run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
   if (r.termination != Termination::converged) ++stats.failed_queries;

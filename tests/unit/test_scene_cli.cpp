@@ -318,7 +318,21 @@ void require_same_scene_archive(const std::string& x, const std::string& y) {
                                           "audit/certified",
                                           "audit/distance",
                                           "audit/depth",
-                                          "audit/narrow_depth"};
+                                          "audit/narrow_depth",
+                                          "queries/frame",
+                                          "queries/body_a",
+                                          "queries/body_b",
+                                          "queries/pose_a",
+                                          "queries/pose_b",
+                                          "queries/warm_size",
+                                          "queries/warm_index_a",
+                                          "queries/warm_index_b",
+                                          "queries/iterations",
+                                          "queries/intersect",
+                                          "queries/distance",
+                                          "shapes/vertices",
+                                          "shapes/offset",
+                                          "shapes/body_shape"};
   for (const std::string& n : names) {
     INFO(n);
     CHECK(dataset_bytes(fx, n) == dataset_bytes(fy, n));
@@ -362,7 +376,10 @@ TEST_CASE("simulate: a stopped or killed run resumes into the uninterrupted run'
       fs::temp_directory_path() / ("gjklab-scene-resume-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string scene = (dir / "tiny.toml").string();
-  std::ofstream(scene) << kScene << "\n[narrow_phase]\nmeasure_cold = true\n"
+  std::string text = kScene;
+  // The recorded queries too (queries/ and shapes/), every 6th frame.
+  text.insert(text.find("compare_broad_phases"), "queries_every = 6\n");
+  std::ofstream(scene) << text << "\n[narrow_phase]\nmeasure_cold = true\n"
                        << "\n[oracle]\naudit_every = 7\n";
   const std::string full = (dir / "full.h5").string();
   std::string out, err;

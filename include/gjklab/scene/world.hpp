@@ -106,6 +106,18 @@ struct StepStats {
   std::size_t failed_queries = 0;   ///< GJK or EPA stops other than converged
 };
 
+/// One narrow-phase query as a step ran it, for a record of the query stream: the pair, the
+/// warm start it was given (the previous step's simplex as vertex indices into a's and b's
+/// hulls, oldest first; none for a cold query) and what GJK answered.
+struct QueryRecord {
+  std::uint32_t a = 0, b = 0;
+  int warm_size = 0;  ///< 0 … 4 vertices
+  std::array<std::int32_t, 4> warm_index_a{-1, -1, -1, -1}, warm_index_b{-1, -1, -1, -1};
+  int iterations = 0;
+  bool intersect = false;
+  double distance = 0;  ///< length units
+};
+
 /// A pair's memory between steps: its final simplex (the next query's warm start) and its
 /// contact points with their impulses (the next solve's warm start).
 struct PairState {
@@ -143,6 +155,10 @@ class World {
   /// Replaces the carried state; the caller restores the bodies' poses and velocities. Throws
   /// std::invalid_argument for a pair whose bodies do not exist.
   void restore(const CarriedState& state);
+
+  /// While `log` is set, every query of a step is appended to it (nullptr: none; the caller
+  /// keeps the vector alive).
+  void record_queries(std::vector<QueryRecord>* log) { query_log_ = log; }
 
   /// Advances by settings().dt; returns what the step did.
   StepStats step();
@@ -203,6 +219,7 @@ class World {
   /// them directly so that their simplices carry vertex indices).
   std::vector<std::optional<Polytope>> world_hulls_;
   std::vector<std::uint64_t> world_hull_step_;
+  std::vector<QueryRecord>* query_log_ = nullptr;
 };
 
 }  // namespace gjklab::scene
