@@ -86,6 +86,9 @@ CLI::App* add_hunt_command(CLI::App& app, HuntArgs& args) {
                   "wrong_boolean (default), error, iterations or not_converged")
       ->check(CLI::IsMember({"wrong_boolean", "error", "iterations", "not_converged"}));
   cmd->add_option("--seed", args.seed, "seed of the search (default 1)");
+  cmd->add_option("--restart-queries", args.restart_queries,
+                  "the most queries one restart's local search spends (default 6)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--out", args.out, "FOUND.jsonl: the failures as a gjklab query --cases file")
       ->required();
   cmd->add_option("--archive", args.archive,
@@ -129,6 +132,7 @@ int run_hunt_command(const HuntArgs& args, std::ostream& out, std::ostream& err)
     options.queries = experiment::rank_queries(args.queries, rank, size);
     options.objective = *experiment::hunt_objective_from_string(args.objective);
     options.seed = args.seed;
+    options.restart_queries = args.restart_queries;
     options.random_baseline = !args.no_random;
     options.rank = rank;
     options.ranks = size;

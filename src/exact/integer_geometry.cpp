@@ -82,7 +82,7 @@ bool filter_candidates(std::span<const Vec3> cloud, const std::array<double, 3>&
     else
       e += 0x1p-1020;
     const double low = s - e, high = s + e;
-    finite &= std::isfinite(low) & std::isfinite(high);
+    finite = finite && std::isfinite(low) && std::isfinite(high);
     best_low = std::max(best_low, low);
     // best_low only grows, so a point kept by the final bound passed this test too.
     if (high >= best_low) out.emplace_back(i, high);

@@ -415,7 +415,9 @@ std::string merge_hunt_summaries(const std::vector<std::string>& summaries) {
       merged = nlohmann::ordered_json::parse(line);
       continue;
     }
-    if (j["algorithm"] != merged["algorithm"] || j["objective"] != merged["objective"])
+    const auto text = [](const auto& value) { return value.template get<std::string>(); };
+    if (text(j.at("algorithm")) != text(merged["algorithm"]) ||
+        text(j.at("objective")) != text(merged["objective"]))
       throw std::invalid_argument("hunt: rank summaries of different searches");
     for (const char* key : {"failures_found", "queries", "restarts", "shrink_queries",
                             "random_failures", "random_queries"})
