@@ -17,37 +17,11 @@
 #include "gjklab/experiment/driver.hpp"
 #include "gjklab/experiment/ranks.hpp"
 #include "gjklab/experiment/summary.hpp"
+#include "gjklab/stop_signals.hpp"
 
 namespace gjklab::cli {
 
 namespace {
-
-/// Set by the first SIGINT or SIGTERM; a second one gets the default action (terminate).
-std::atomic<bool> interrupted{false};
-
-extern "C" void on_stop_signal(int signal) {
-  interrupted = true;
-  std::signal(signal, SIG_DFL);
-}
-
-/// While alive, SIGINT and SIGTERM (a cluster's scheduler stopping a job) ask the run to stop:
-/// it finishes the started cases and leaves its archive incomplete and resumable.
-class StopSignals {
- public:
-  StopSignals()
-      : previous_int_(std::signal(SIGINT, on_stop_signal)),
-        previous_term_(std::signal(SIGTERM, on_stop_signal)) {}
-  ~StopSignals() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
 
 /// Prints the end of a run: the summary, or where an incomplete archive was left.
 int report_run(const experiment::RunReport& report, const std::string& what, std::ostream& out,
@@ -56,7 +30,7 @@ int report_run(const experiment::RunReport& report, const std::string& what, std
     err << "gjklab run: stopped: " << report.cases << " finished cases written to "
         << report.output.string() << " (marked incomplete; continue with gjklab run --resume "
         << report.output.string() << ")\n";
-    return interrupted ? 130 : 0;
+    return stop_requested() ? 130 : 0;
   }
   out << what << ": " << report.cases << " cases in " << report.seconds << " s ("
       << static_cast<double>(report.cases - report.resumed_cases) / report.seconds
@@ -165,8 +139,8 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
     options.progress = speaks ? &err : nullptr;
     options.live_progress = &err == &std::cerr && isatty(STDERR_FILENO);
     options.ranks = ranks.get();
-    interrupted = false;
-    options.stop = &interrupted;
+    stop_requested() = false;
+    options.stop = &stop_requested();
     const int status = run_or_resume(args, options, speaks ? out : quiet, speaks ? err : quiet);
     // Only the ranks a signal reached report it; the job's status is the worst rank's.
     return status;

@@ -19,6 +19,7 @@
 #include "gjklab/peers/bullet_broadphase.hpp"
 #include "gjklab/scene_audit.hpp"
 #include "gjklab/scene_file.hpp"
+#include "gjklab/stop_signals.hpp"
 
 namespace gjklab::cli {
 
@@ -334,33 +335,6 @@ void record_frame(const scene::World& w, const scene::StepStats& st, double size
   f.solver_ns.push_back(st.solver_ns);
 }
 
-/// Set by the first SIGINT or SIGTERM while a scene runs; a second one gets the default action.
-std::atomic<bool> stop_requested{false};
-
-extern "C" void on_simulate_stop_signal(int signal) {
-  stop_requested = true;
-  std::signal(signal, SIG_DFL);
-}
-
-/// While alive, SIGINT and SIGTERM ask the simulation to stop after the current frame and
-/// leave a checkpoint to resume from.
-class StopSignals {
- public:
-  StopSignals()
-      : previous_int_(std::signal(SIGINT, on_simulate_stop_signal)),
-        previous_term_(std::signal(SIGTERM, on_simulate_stop_signal)) {}
-  ~StopSignals() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
-
 enum class Outcome { finished, stopped, not_finite };
 
 /// Where a run stands and when it writes checkpoints.
@@ -405,7 +379,7 @@ Outcome simulate(SceneSetup& s, Recording& r, Progress& p, Checkpoint&& checkpoi
     if (frame % s.contacts_every == 0) record_contacts(w, frame, r.contacts);
     if (!w.finite()) return Outcome::not_finite;
     if (p.done == p.target) break;
-    if (stop_requested || (p.stop_after > 0 && p.done - first >= p.stop_after))
+    if (stop_requested() || (p.stop_after > 0 && p.done - first >= p.stop_after))
       return Outcome::stopped;
     if (p.checkpoint > 0 && p.done % p.checkpoint == 0) checkpoint();
   }
@@ -802,7 +776,7 @@ int report(const SceneSetup& s, const std::string& path, const Recording& r, con
     err << "gjklab simulate: stopped after frame " << p.done << " of " << p.target << ": "
         << checkpoint_path(path) << " (continue with gjklab simulate --resume "
         << checkpoint_path(path) << ")\n";
-    return stop_requested ? 130 : 0;
+    return stop_requested() ? 130 : 0;
   }
   const FrameRows& f = r.frames;
   double max_pen = 0;
@@ -898,7 +872,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
 }
 
 int run_simulate_command(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
-  stop_requested = false;
+  stop_requested() = false;
   try {
     if (args.scene.empty() == args.resume.empty()) {
       err << "gjklab simulate: give a scene file, or --resume FILE (not both)\n";
