@@ -20,8 +20,8 @@ struct HuntArgs {
   std::string objective = "wrong_boolean";
   std::uint64_t seed = 1;
   int restart_queries = 6;  ///< see experiment::HuntOptions::restart_queries
-  std::string out;      ///< FOUND.jsonl; the summary goes to FOUND.summary.json
-  std::string archive;  ///< FILE.h5: the found cases run as an experiment (empty: none)
+  std::string out;          ///< FOUND.jsonl; the summary goes to FOUND.summary.json
+  std::string archive;      ///< FILE.h5: the found cases run as an experiment (empty: none)
   bool force = false;
   bool no_random = false;
 };

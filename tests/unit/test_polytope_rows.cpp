@@ -4,6 +4,8 @@
 // the same errors, whatever the strides and however the storage was used before.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -119,7 +121,10 @@ TEST_CASE("a polytope from rows reads unaligned rows", "[unit][support]") {
   const std::vector<Vec3> cloud = awkward_cloud(37, 0, rng);
   std::vector<char> bytes(cloud.size() * sizeof(Vec3) + 1);
   std::memcpy(bytes.data() + 1, cloud.data(), cloud.size() * sizeof(Vec3));
-  check_same(Polytope(CoordinateRows{bytes.data() + 1, cloud.size()}), cloud, rng);
+  const Polytope from_rows(CoordinateRows{bytes.data() + 1, cloud.size()});
+  REQUIRE(from_rows.size() == cloud.size());
+  CHECK(std::equal(cloud.begin(), cloud.end(), from_rows.vertices().begin()));
+  check_same(from_rows, cloud, rng);
 }
 
 TEST_CASE("a polytope from rows refuses the clouds the vector constructor refuses",
