@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -54,8 +55,9 @@ std::string quoted(const std::string& s) {
   return "'" + s + "'";
 }
 
-/// Starts `gjklab run` with the arguments, its output discarded; returns its pid.
-pid_t start(const std::vector<std::string>& args) {
+/// Starts `gjklab run` with the arguments, its standard output discarded and its standard error
+/// written to `error_log` (discarded by default); returns its pid.
+pid_t start(const std::vector<std::string>& args, const std::string& error_log = "/dev/null") {
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
@@ -66,11 +68,19 @@ pid_t start(const std::vector<std::string>& args) {
       argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     std::freopen("/dev/null", "w", stdout);
-    std::freopen("/dev/null", "w", stderr);
+    std::freopen(error_log.c_str(), "w", stderr);
     execv(binary.c_str(), argv.data());
     _exit(127);
   }
   return pid;
+}
+
+/// The text of a file (empty if it cannot be read).
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 /// Waits for the process; its exit status, or 128 + the signal that ended it.
@@ -122,7 +132,12 @@ TEST_CASE("run killed by SIGKILL or SIGINT, then resumed, equals an uninterrupte
       if (!fs::exists(temporary)) continue;  // killed before the archive was created
       // SIGINT finishes the started cases and exits 130; SIGKILL ends it at once.
       CHECK(status == (signal == SIGINT ? 130 : 128 + SIGKILL));
-      REQUIRE(finish(start({"run", "--resume", temporary.string()})) == 0);
+      const fs::path resume_log =
+          dir / ("resume-" + std::to_string(signal) + "-" + std::to_string(delay_ms) + ".log");
+      const int resume_status =
+          finish(start({"run", "--resume", temporary.string()}, resume_log.string()));
+      INFO("the resume's standard error: " << file_text(resume_log));
+      REQUIRE(resume_status == 0);
       CHECK_FALSE(fs::exists(temporary));
       REQUIRE(fs::exists(out));
       CHECK(same_archives(reference, out));
