@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <thread>
@@ -419,9 +420,43 @@ void prepare_resume(const std::filesystem::path& path, Resumption& r, const Rank
   r.writer.emplace(r.final_path, header, /*overwrite=*/false);
 }
 
+/// A run killed after its archive was marked complete and before the rename to the final name
+/// (ArchiveWriter::finish) left a complete FILE.tmp: that file is the finished archive, so the
+/// resume only renames it. Single process only; nullopt when there is no such file.
+std::optional<RunReport> finish_complete_temporary(const std::filesystem::path& path) {
+  std::filesystem::path temporary = path;
+  if (temporary.extension() != ".tmp") temporary += ".tmp";
+  if (!std::filesystem::exists(temporary)) return std::nullopt;
+  Archive prior = read_interrupted(temporary);
+  if (!prior.complete) return std::nullopt;
+  std::filesystem::path final_path = temporary;
+  final_path.replace_extension();
+  if (std::filesystem::exists(final_path))
+    throw std::runtime_error(temporary.string() + " is already complete, and " +
+                             final_path.string() + " exists: keep one of them");
+  std::filesystem::rename(temporary, final_path);
+  std::filesystem::remove(snapshot_path(temporary));
+  const ExperimentConfig config = parse_experiment(prior.header.experiment_text,
+                                                   final_path.string() + " (archived experiment)");
+  std::vector<std::string> names;
+  for (const AlgorithmSpec& a : config.algorithms)
+    names.push_back(a.label);
+  SummaryBuilder summary(names);
+  for (const CaseResult& result : prior.results)
+    summary.add(result);
+  RunReport report;
+  report.output = final_path;
+  report.summary = summary.build();
+  report.cases = report.resumed_cases = prior.results.size();
+  report.complete = true;
+  return report;
+}
+
 }  // namespace
 
 RunReport resume_experiment(const std::filesystem::path& path, const RunOptions& options) {
+  if (!options.ranks)
+    if (std::optional<RunReport> done = finish_complete_temporary(path)) return *done;
   Resumption r;
   // Rank 0 reads the archive; every rank needs its experiment, first case and planned total.
   const std::string plan = shared_setup(options.ranks, [&] {

@@ -147,3 +147,34 @@ TEST_CASE("run killed by SIGKILL or SIGINT, then resumed, equals an uninterrupte
   CHECK(resumed >= 2);  // some of the signals really interrupted the run
   fs::remove_all(dir);
 }
+
+TEST_CASE(
+    "run killed after its archive was marked complete, before the rename: --resume renames it",
+    "[smoke][resume]") {
+  // ArchiveWriter::finish writes the completion flag, closes the file and then renames FILE.tmp
+  // to FILE; a SIGKILL between the two left a complete FILE.tmp that --resume refused as
+  // "already complete" (seen once in the signal test above).
+  const fs::path dir = fs::temp_directory_path() / "gjklab-resume-complete";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path experiment = dir / "resume.toml";
+  std::ofstream(experiment) << kExperiment;
+  const fs::path reference = dir / "reference.h5", out = dir / "run.h5";
+  REQUIRE(finish(start({"run", experiment.string(), "--out", reference.string()})) == 0);
+  fs::path temporary = out;
+  temporary += ".tmp";
+  fs::copy_file(reference, temporary);
+  const fs::path log = dir / "resume.log";
+  const int status = finish(start({"run", "--resume", temporary.string()}, log.string()));
+  INFO("the resume's standard error: " << file_text(log));
+  CHECK(status == 0);
+  CHECK_FALSE(fs::exists(temporary));
+  REQUIRE(fs::exists(out));
+  CHECK(same_archives(reference, out));
+  // With the final archive already there, both files are kept and the resume says so.
+  fs::copy_file(reference, temporary);
+  CHECK(finish(start({"run", "--resume", temporary.string()}, log.string())) == 1);
+  CHECK(file_text(log).find("already complete") != std::string::npos);
+  CHECK(fs::exists(temporary));
+  fs::remove_all(dir);
+}
