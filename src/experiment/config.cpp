@@ -594,40 +594,58 @@ void read_radii(const Section& s, bool exact_pairs, FamilySpec& f) {
   if (const auto r = s.radius_interval("radius_b")) f.radius_b = *r;
 }
 
-FamilySpec read_family(const Section& s, const PlacementSpec& placement,
-                       const std::string& experiment_file) {
-  s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
-                "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
-                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects"});
-  FamilySpec f;
-  const bool has_shape = s.find("shape") != nullptr;
-  const auto pair_shape = has_shape && s.find("shape")->is_string()
+/// What a [[family]] table describes, read from its `shape` key: the kinds of pair source that
+/// take keys of their own (contact, file, stream, mesh, real_object), or generated shapes.
+struct FamilyForm {
+  bool has_shape = false;  // `shape` sets both shapes (or names a pair source)
+  bool is_contact = false;
+  bool is_stream = false;
+  bool is_file = false;  // pairs read from a file: a file family or a query stream
+  bool is_mesh = false;
+  bool is_real_object = false;
+};
+
+FamilyForm family_form(const Section& s) {
+  FamilyForm form;
+  form.has_shape = s.find("shape") != nullptr;
+  const auto pair_shape = form.has_shape && s.find("shape")->is_string()
                               ? std::optional<std::string>(*s.string("shape"))
                               : std::nullopt;
-  const bool is_contact = pair_shape == "contact";
-  const bool is_stream = pair_shape == "stream";
-  const bool is_file = pair_shape == "file" || is_stream;
-  const bool is_mesh = pair_shape == "mesh";
-  const bool is_real_object = pair_shape == "real_object";
-  if (!is_real_object && s.find("objects"))
+  form.is_contact = pair_shape == "contact";
+  form.is_stream = pair_shape == "stream";
+  form.is_file = pair_shape == "file" || form.is_stream;
+  form.is_mesh = pair_shape == "mesh";
+  form.is_real_object = pair_shape == "real_object";
+  return form;
+}
+
+/// Refuses the keys that belong to another form of family than this one.
+void refuse_foreign_keys(const Section& s, const FamilyForm& form) {
+  if (!form.is_real_object && s.find("objects"))
     s.fail(*s.find("objects"), "objects", "applies only to shape = \"real_object\"");
   for (std::string_view key : {"contact", "angle"})
-    if (!is_contact && s.find(key))
+    if (!form.is_contact && s.find(key))
       s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
-  if (!is_file && !is_mesh && s.find("path"))
+  if (!form.is_file && !form.is_mesh && s.find("path"))
     s.fail(*s.find("path"), "path", "applies only to shape = \"file\", \"stream\" or \"mesh\"");
   for (std::string_view key : {"shape_a", "shape_b"})
-    if (has_shape && s.find(key))
+    if (form.has_shape && s.find(key))
       s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
-  if (is_contact) {
+}
+
+/// The pair's source: a contact configuration, stored pairs, meshes, real objects, or the
+/// generated shape (`shape`, or `shape_a` with `shape_b`).
+void read_pair_source(const Section& s, const FamilyForm& form, const std::string& experiment_file,
+                      FamilySpec& f) {
+  if (form.is_contact) {
     read_contact(s, f);
-  } else if (is_file) {
-    read_stored_pairs(s, experiment_file, f, is_stream);
-  } else if (is_mesh) {
+  } else if (form.is_file) {
+    read_stored_pairs(s, experiment_file, f, form.is_stream);
+  } else if (form.is_mesh) {
     read_meshes(s, experiment_file, f);
-  } else if (is_real_object) {
+  } else if (form.is_real_object) {
     read_real_objects(s, f);
-  } else if (has_shape) {
+  } else if (form.has_shape) {
     f.shape_a = f.shape_b = read_shape(s, "shape");
   } else if (s.find("shape_a") || s.find("shape_b")) {
     if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
@@ -638,7 +656,10 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
     s.missing("shape", "missing (give 'shape', or both 'shape_a' and 'shape_b'); valid shapes: " +
                            shape_names());
   }
+}
 
+/// `vertices` (both shapes), `vertices_a`, `vertices_b`; each shape's default otherwise.
+void read_vertex_counts(const Section& s, FamilySpec& f) {
   f.vertices_a = default_vertices(f.shape_a);
   f.vertices_b = default_vertices(f.shape_b);
   for (std::string_view key : {"vertices_a", "vertices_b"})
@@ -647,7 +668,10 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   if (const auto v = s.count_interval("vertices")) f.vertices_a = f.vertices_b = *v;
   if (const auto v = s.count_interval("vertices_a")) f.vertices_a = *v;
   if (const auto v = s.count_interval("vertices_b")) f.vertices_b = *v;
+}
 
+/// Size, shape proportions, rotation, offset and weight of the drawn pairs.
+void read_pair_draw(const Section& s, FamilySpec& f) {
   if (const auto scale = s.positive("scale")) {
     if (*scale < kMinScale || *scale > kMaxScale)
       s.fail(*s.find("scale"), "scale",
@@ -660,33 +684,50 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   if (const auto ratio = s.positive_interval("scale_b")) f.scale_ratio = *ratio;
   if (const auto offset = s.positive_interval("offset")) f.offset = *offset;
   if (const auto weight = s.positive("weight")) f.weight = *weight;
-  read_radii(s, is_contact || is_file, f);
+}
 
+/// The family's own placement (over the experiment's); touching needs exact contacts.
+void read_family_placement(const Section& s, const FamilyForm& form, const PlacementSpec& placement,
+                           FamilySpec& f) {
   f.placement = placement;
   if (const toml::table* sub = s.subtable("placement"))
     f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
-
   const bool touching = f.placement.mode == "touching";
-  if (touching && (!is_contact || f.contact == ContactType::parallel_edges))
+  if (touching && (!form.is_contact || f.contact == ContactType::parallel_edges))
     s.fail(s.header_line(), "placement.mode",
            "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges)");
+}
 
+/// `name`, or one made from what the family draws.
+std::string read_family_name(const Section& s, const FamilyForm& form, const FamilySpec& f) {
   if (const auto name = s.string("name")) {
     if (name->empty()) s.fail(*s.find("name"), "name", "must not be empty");
-    f.name = *name;
-  } else if (is_contact) {
-    f.name = "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
-  } else if (is_file) {
-    f.name = "file:" + f.path;
-  } else if (is_mesh) {
-    f.name = "mesh:" + f.path;
-  } else if (is_real_object) {
-    f.name = s.find("objects")->is_string() ? "real_object:all" : "real_object";
-  } else if (f.shape_a == f.shape_b) {
-    f.name = std::string(to_string(f.shape_a));
-  } else {
-    f.name = std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+    return *name;
   }
+  if (form.is_contact)
+    return "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
+  if (form.is_file) return "file:" + f.path;
+  if (form.is_mesh) return "mesh:" + f.path;
+  if (form.is_real_object)
+    return s.find("objects")->is_string() ? "real_object:all" : "real_object";
+  if (f.shape_a == f.shape_b) return std::string(to_string(f.shape_a));
+  return std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+}
+
+FamilySpec read_family(const Section& s, const PlacementSpec& placement,
+                       const std::string& experiment_file) {
+  s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
+                "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
+                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects"});
+  const FamilyForm form = family_form(s);
+  refuse_foreign_keys(s, form);
+  FamilySpec f;
+  read_pair_source(s, form, experiment_file, f);
+  read_vertex_counts(s, f);
+  read_pair_draw(s, f);
+  read_radii(s, form.is_contact || form.is_file, f);
+  read_family_placement(s, form, placement, f);
+  f.name = read_family_name(s, form, f);
   return f;
 }
 
@@ -947,28 +988,8 @@ bool valid_experiment_name(std::string_view name) {
   });
 }
 
-}  // namespace
-
-ExperimentConfig parse_experiment(const std::string& text, const std::string& source) {
-  toml::table root = parse_toml(text, source);
-  // With a base, the archive keeps the merged experiment, which reads back without the base.
-  std::string effective_text = text;
-  if (root.contains("base")) {
-    root = with_base(std::move(root), source, 0);
-    std::ostringstream merged;
-    merged << "# " << source << " merged with its base experiment\n"
-           << toml::toml_formatter(root) << "\n";
-    effective_text = merged.str();
-  }
-
-  const Section top(source, root, "", 1);
-  top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle", "timing",
-                  "placement", "family", "exclude_families", "algorithm", "sweep", "trace"});
-
-  ExperimentConfig config;
-  config.source = source;
-  config.text = effective_text;
-
+/// The top-level scalars: name, seed, cases, threads, output and touching_band.
+void read_run_settings(const Section& top, ExperimentConfig& config) {
   const auto name = top.string("name");
   if (!name) top.missing("name");
   if (!valid_experiment_name(*name))
@@ -994,36 +1015,34 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     config.output = *output;
   }
   if (const auto band = top.positive("touching_band")) config.touching_band = *band;
+}
 
-  if (const toml::table* t = top.subtable("oracle")) {
-    const Section oracle = top.child(*t, "oracle");
-    oracle.allow_only({"enabled", "depth", "certificates", "verify", "hull_vertices"});
-    if (const auto enabled = oracle.boolean("enabled")) config.oracle = *enabled;
-    if (const auto depth = oracle.boolean("depth")) config.depth = *depth;
-    if (const auto certificates = oracle.boolean("certificates"))
-      config.certificates = *certificates;
-    if (const auto verify = oracle.boolean("verify")) config.verify = *verify;
-    if (const auto hull_vertices = oracle.boolean("hull_vertices"))
-      config.hull_vertices = *hull_vertices;
-    if (config.verify && !config.certificates)
-      oracle.fail(*oracle.find("verify"), "verify",
-                  "audits the certificates, which are off (certificates = false)");
-    if (config.depth && !config.oracle)
-      oracle.fail(*oracle.find("depth"), "depth", "needs the oracle (enabled = true)");
-  }
+/// [oracle]: which exact answers are computed, and the switches that depend on each other.
+void read_oracle(const Section& oracle, ExperimentConfig& config) {
+  oracle.allow_only({"enabled", "depth", "certificates", "verify", "hull_vertices"});
+  if (const auto enabled = oracle.boolean("enabled")) config.oracle = *enabled;
+  if (const auto depth = oracle.boolean("depth")) config.depth = *depth;
+  if (const auto certificates = oracle.boolean("certificates")) config.certificates = *certificates;
+  if (const auto verify = oracle.boolean("verify")) config.verify = *verify;
+  if (const auto hull_vertices = oracle.boolean("hull_vertices"))
+    config.hull_vertices = *hull_vertices;
+  if (config.verify && !config.certificates)
+    oracle.fail(*oracle.find("verify"), "verify",
+                "audits the certificates, which are off (certificates = false)");
+  if (config.depth && !config.oracle)
+    oracle.fail(*oracle.find("depth"), "depth", "needs the oracle (enabled = true)");
+}
 
-  if (const toml::table* t = top.subtable("timing")) {
-    const Section timing = top.child(*t, "timing");
-    timing.allow_only({"enabled", "repetitions"});
-    if (const auto enabled = timing.boolean("enabled")) config.timing = *enabled;
-    if (const auto repetitions = timing.integer("repetitions", 1, kMaxRepetitions))
-      config.repetitions = static_cast<int>(*repetitions);
-  }
+/// [timing]: whether queries are timed, and how often each is repeated.
+void read_timing(const Section& timing, ExperimentConfig& config) {
+  timing.allow_only({"enabled", "repetitions"});
+  if (const auto enabled = timing.boolean("enabled")) config.timing = *enabled;
+  if (const auto repetitions = timing.integer("repetitions", 1, kMaxRepetitions))
+    config.repetitions = static_cast<int>(*repetitions);
+}
 
-  PlacementSpec placement;
-  if (const toml::table* t = top.subtable("placement"))
-    placement = read_placement(top.child(*t, "placement"), placement);
-
+/// The [[family]] tables (at least one, distinct names), then exclude_families.
+void read_families(const Section& top, const PlacementSpec& placement, ExperimentConfig& config) {
   const toml::array* families = top.table_array("family");
   if (!families) top.missing("family", "missing: at least one [[family]] is required");
   if (families->empty())
@@ -1031,7 +1050,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
   for (std::size_t i = 0; i < families->size(); ++i) {
     const toml::table& t = *families->get(i)->as_table();
     const Section s = top.child(t, "family[" + std::to_string(i) + "]");
-    FamilySpec family = read_family(s, placement, source);
+    FamilySpec family = read_family(s, placement, config.source);
     for (std::size_t j = 0; j < config.families.size(); ++j)
       if (config.families[j].name == family.name)
         s.fail(s.find("name") ? line_of(*s.find("name")) : s.header_line(), "name",
@@ -1040,7 +1059,11 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
     config.families.push_back(std::move(family));
   }
   exclude_families(top, config.families);
+}
 
+/// The [[algorithm]] tables (at least one, distinct labels); needs the families read first, to
+/// refuse a polytope-only algorithm on sphere-swept shapes.
+void read_algorithms(const Section& top, ExperimentConfig& config) {
   const toml::array* algorithms = top.table_array("algorithm");
   if (!algorithms) top.missing("algorithm", "missing: at least one [[algorithm]] is required");
   if (algorithms->empty())
@@ -1063,17 +1086,53 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
                    "]; give the second one its own label = \"...\"");
     config.algorithms.push_back(std::move(spec));
   }
-  if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);
-  if (const toml::table* t = top.subtable("trace")) {
-    const Section trace = top.child(*t, "trace");
-    trace.allow_only({"mode"});
-    if (const auto mode = trace.string("mode")) {
-      if (*mode != "none" && *mode != "failing" && *mode != "all")
-        trace.fail(*trace.find("mode"), "mode",
-                   "unknown trace mode '" + *mode + "'; valid: none, failing, all");
-      config.trace = *mode;
-    }
+}
+
+/// [trace]: which cases keep a per-iteration trace.
+void read_trace(const Section& trace, ExperimentConfig& config) {
+  trace.allow_only({"mode"});
+  if (const auto mode = trace.string("mode")) {
+    if (*mode != "none" && *mode != "failing" && *mode != "all")
+      trace.fail(*trace.find("mode"), "mode",
+                 "unknown trace mode '" + *mode + "'; valid: none, failing, all");
+    config.trace = *mode;
   }
+}
+
+/// The experiment merged with its base, if it names one, and the text the archive keeps: with a
+/// base, the merged experiment, which reads back without the base.
+std::pair<toml::table, std::string> resolve_base(const std::string& text,
+                                                 const std::string& source) {
+  toml::table root = parse_toml(text, source);
+  if (!root.contains("base")) return {std::move(root), text};
+  root = with_base(std::move(root), source, 0);
+  std::ostringstream merged;
+  merged << "# " << source << " merged with its base experiment\n"
+         << toml::toml_formatter(root) << "\n";
+  return {std::move(root), merged.str()};
+}
+
+}  // namespace
+
+ExperimentConfig parse_experiment(const std::string& text, const std::string& source) {
+  auto [root, effective_text] = resolve_base(text, source);
+  const Section top(source, root, "", 1);
+  top.allow_only({"name", "seed", "cases", "threads", "output", "touching_band", "oracle", "timing",
+                  "placement", "family", "exclude_families", "algorithm", "sweep", "trace"});
+
+  ExperimentConfig config;
+  config.source = source;
+  config.text = std::move(effective_text);
+  read_run_settings(top, config);
+  if (const toml::table* t = top.subtable("oracle")) read_oracle(top.child(*t, "oracle"), config);
+  if (const toml::table* t = top.subtable("timing")) read_timing(top.child(*t, "timing"), config);
+  PlacementSpec placement;
+  if (const toml::table* t = top.subtable("placement"))
+    placement = read_placement(top.child(*t, "placement"), placement);
+  read_families(top, placement, config);
+  read_algorithms(top, config);
+  if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);
+  if (const toml::table* t = top.subtable("trace")) read_trace(top.child(*t, "trace"), config);
   return config;
 }
 
