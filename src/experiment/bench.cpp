@@ -395,15 +395,21 @@ std::map<const Polytope*, SupportCostSampler> floor_samplers(const Case& c,
   return out;
 }
 
-std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& entries,
-                                      const BenchConfig& config, const AlgorithmOptions& options) {
-  const std::size_t m = entries.size();
-  std::vector<BenchRecord> records(m);
-  std::vector<int> reps(m, 1);
-  std::vector<std::span<const BenchPair>> inputs(m);
-  for (std::size_t e = 0; e < m; ++e) {
-    inputs[e] = entries[e].hill_climbing ? std::span<const BenchPair>(c.hc_pairs)
-                                         : std::span<const BenchPair>(c.pairs);
+/// Each entry's pairs: the hill-climbing copies for hill-climbing rows, the plain ones else.
+std::vector<std::span<const BenchPair>> entry_inputs(const Case& c,
+                                                     const std::vector<Entry>& entries) {
+  std::vector<std::span<const BenchPair>> inputs;
+  for (const Entry& entry : entries)
+    inputs.push_back(entry.hill_climbing ? std::span<const BenchPair>(c.hc_pairs)
+                                         : std::span<const BenchPair>(c.pairs));
+  return inputs;
+}
+
+/// The rows' identifying columns (case, algorithm, pair, placement, query count).
+std::vector<BenchRecord> record_heads(const Case& c, const std::vector<Entry>& entries,
+                                      const std::vector<std::span<const BenchPair>>& inputs) {
+  std::vector<BenchRecord> records(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
     BenchRecord& r = records[e];
     r.suite = c.suite;
     r.case_name = c.name;
@@ -414,8 +420,17 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
     r.queries = static_cast<long long>(inputs[e].size());
     r.via_registry = entries[e].loop == nullptr;
   }
-  // Warm-up: one pass each (also the tallies), then calibrate the batch size.
-  for (std::size_t e = 0; e < m; ++e) {
+  return records;
+}
+
+/// Warm-up: one pass of each row, which also gives its tallies (the per-query means); then the
+/// batch size, as many repetitions as fill config.batch_seconds.
+std::vector<int> warm_up_and_calibrate(const std::vector<Entry>& entries,
+                                       const std::vector<std::span<const BenchPair>>& inputs,
+                                       const BenchConfig& config, const AlgorithmOptions& options,
+                                       std::vector<BenchRecord>& records) {
+  std::vector<int> reps(entries.size(), 1);
+  for (std::size_t e = 0; e < entries.size(); ++e) {
     const auto start = Clock::now();
     const BenchTally t = run_loop(entries[e], inputs[e], options, 1);
     const double once = std::max(seconds_since(start), 1e-9);
@@ -427,30 +442,37 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
     r.intersect_fraction = static_cast<double>(t.intersections) / q;
     r.repetitions = reps[e];
   }
-  for (std::size_t e = 0; e < m; ++e)
-    run_loop(entries[e], inputs[e], options, reps[e]);
+  return reps;
+}
 
-  // Support calls of each full-scan row's queries, pair by pair, for its cost floor.
-  const bool any_full_scan =
-      std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return !e.hill_climbing; });
-  std::vector<std::vector<double>> calls(m);
-  for (std::size_t e = 0; e < m; ++e) {
+/// Support calls of each full-scan row's queries, pair by pair, for its cost floor (empty for
+/// hill-climbing rows).
+std::vector<std::vector<double>> support_calls_per_pair(
+    const std::vector<Entry>& entries, const std::vector<std::span<const BenchPair>>& inputs,
+    const AlgorithmOptions& options) {
+  std::vector<std::vector<double>> calls(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
     if (entries[e].hill_climbing) continue;
     for (const BenchPair& p : inputs[e]) {
       const BenchTally t = run_loop(entries[e], std::span<const BenchPair>(&p, 1), options, 1);
       calls[e].push_back(static_cast<double>(t.support_calls));
     }
   }
-  std::map<const Polytope*, SupportCostSampler> samplers;
-  if (any_full_scan) samplers = floor_samplers(c, config);
+  return calls;
+}
 
-  // Interleaved samples: A B C A B C … Each timed batch follows one untimed pass over the same
-  // inputs, so that it starts with its data as warm as the caches allow, whatever ran before it
-  // (without it, on clouds larger than the caches, the row after a peer that builds its own
-  // copy of the shapes paid for that peer's evictions: up to 3× on 8192-point clouds).
-  std::vector<std::vector<double>> samples(m);
+/// Interleaved samples, nanoseconds per query: A B C A B C … Each timed batch follows one
+/// untimed pass over the same inputs, so that it starts with its data as warm as the caches
+/// allow, whatever ran before it (without it, on clouds larger than the caches, the row after a
+/// peer that builds its own copy of the shapes paid for that peer's evictions: up to 3× on
+/// 8192-point clouds). The support-cost rounds take their turn in the same rotation.
+std::vector<std::vector<double>> interleaved_samples(
+    const std::vector<Entry>& entries, const std::vector<std::span<const BenchPair>>& inputs,
+    const std::vector<int>& reps, const BenchConfig& config, const AlgorithmOptions& options,
+    std::map<const Polytope*, SupportCostSampler>& samplers) {
+  std::vector<std::vector<double>> samples(entries.size());
   for (int s = 0; s < config.samples; ++s) {
-    for (std::size_t e = 0; e < m; ++e) {
+    for (std::size_t e = 0; e < entries.size(); ++e) {
       run_loop(entries[e], inputs[e], options, 1);
       const auto start = Clock::now();
       run_loop(entries[e], inputs[e], options, reps[e]);
@@ -458,19 +480,26 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
       samples[e].push_back(seconds * 1e9 /
                            (static_cast<double>(reps[e]) * static_cast<double>(inputs[e].size())));
     }
-    // The support-cost rounds take their turn in the same rotation.
     for (auto& [shape, sampler] : samplers)
       sampler.sample();
   }
-  // Cost floor of full-scan rows: each pair's support calls times its shapes' support cost
-  // (each shape's medians taken once).
+  return samples;
+}
+
+/// Cost floor of full-scan rows: each pair's support calls times its shapes' support cost
+/// (each shape's medians taken once).
+void set_cost_floors(const std::vector<Entry>& entries,
+                     const std::vector<std::span<const BenchPair>>& inputs,
+                     const std::vector<std::vector<double>>& calls,
+                     const std::map<const Polytope*, SupportCostSampler>& samplers,
+                     std::vector<BenchRecord>& records) {
   struct SupportCost {
     double dependent_ns, independent_ns;
   };
   std::map<const Polytope*, SupportCost> costs;
   for (const auto& [shape, sampler] : samplers)
     costs[shape] = {sampler.dependent_ns(), sampler.independent_ns()};
-  for (std::size_t e = 0; e < m; ++e) {
+  for (std::size_t e = 0; e < entries.size(); ++e) {
     if (entries[e].hill_climbing) continue;
     double floor = 0, floor_independent = 0;
     for (std::size_t k = 0; k < inputs[e].size(); ++k) {
@@ -483,7 +512,12 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
     records[e].floor_ns = floor / queries;
     records[e].floor_independent_ns = floor_independent / queries;
   }
-  for (std::size_t e = 0; e < m; ++e) {
+}
+
+/// The time columns: quantiles of the samples and their ratios to the floors.
+void set_time_quantiles(const std::vector<std::vector<double>>& samples,
+                        std::vector<BenchRecord>& records) {
+  for (std::size_t e = 0; e < records.size(); ++e) {
     BenchRecord& r = records[e];
     r.ns_median = quantile(samples[e], 0.5);
     r.ns_p10 = quantile(samples[e], 0.1);
@@ -492,6 +526,25 @@ std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& e
     if (r.floor_independent_ns)
       r.ratio_to_floor_independent = r.ns_median / *r.floor_independent_ns;
   }
+}
+
+std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& entries,
+                                      const BenchConfig& config, const AlgorithmOptions& options) {
+  const auto inputs = entry_inputs(c, entries);
+  std::vector<BenchRecord> records = record_heads(c, entries, inputs);
+  const std::vector<int> reps = warm_up_and_calibrate(entries, inputs, config, options, records);
+  for (std::size_t e = 0; e < entries.size(); ++e)
+    run_loop(entries[e], inputs[e], options, reps[e]);
+
+  const auto calls = support_calls_per_pair(entries, inputs, options);
+  const bool any_full_scan =
+      std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return !e.hill_climbing; });
+  std::map<const Polytope*, SupportCostSampler> samplers;
+  if (any_full_scan) samplers = floor_samplers(c, config);
+
+  const auto samples = interleaved_samples(entries, inputs, reps, config, options, samplers);
+  set_cost_floors(entries, inputs, calls, samplers, records);
+  set_time_quantiles(samples, records);
   return records;
 }
 
@@ -787,8 +840,43 @@ void write_json(const BenchReport& report, std::ostream& out) {
   out << doc.dump(1) << "\n";
 }
 
-void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
-  const BenchConfig& cfg = report.config;
+namespace {
+
+/// The record of this suite, case and algorithm, or nullptr.
+const BenchRecord* find_record(const BenchReport& report, const std::string& suite,
+                               const std::string& case_name, const std::string& algorithm) {
+  for (const BenchRecord& r : report.records)
+    if (r.suite == suite && r.case_name == case_name && r.algorithm == algorithm) return &r;
+  return nullptr;
+}
+
+/// The report's algorithms in order of first appearance.
+std::vector<std::string> algorithms_in_order(const BenchReport& report) {
+  std::vector<std::string> algs;
+  for (const BenchRecord& r : report.records)
+    if (std::find(algs.begin(), algs.end(), r.algorithm) == algs.end()) algs.push_back(r.algorithm);
+  return algs;
+}
+
+bool has_suite(const BenchReport& report, std::string_view suite) {
+  return std::any_of(report.records.begin(), report.records.end(),
+                     [&](const BenchRecord& r) { return r.suite == suite; });
+}
+
+/// A table's head: the leading columns, one right-aligned column per algorithm, the speed-up.
+void write_table_head(std::ostream& out, std::string_view leading, std::string_view leading_rule,
+                      const std::vector<std::string>& algs, std::string_view speed_up) {
+  out << leading;
+  for (const std::string& a : algs)
+    out << " " << a << " |";
+  out << " " << speed_up << " |\n" << leading_rule;
+  for (std::size_t i = 0; i < algs.size(); ++i)
+    out << "---:|";
+  out << "---:|\n";
+}
+
+/// The title, the environment and the sampling of the seed tables.
+void write_seed_tables_preamble(const BenchConfig& cfg, std::ostream& out) {
   out << "# Seed tables: the classic demo's timings, reproduced\n\n";
   out << "Generated by `gjklab bench --config experiments/seed_tables.toml --markdown "
          "results/seed_tables.md`.\n";
@@ -797,85 +885,77 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
   for (const auto& [k, v] : bench_environment())
     out << "| " << k << " | " << v << " |\n";
   out << "| samples x configurations | " << cfg.samples << " x " << cfg.configurations << " |\n";
+}
 
-  // Algorithms in order of first appearance.
-  std::vector<std::string> algs;
-  for (const BenchRecord& r : report.records)
-    if (std::find(algs.begin(), algs.end(), r.algorithm) == algs.end()) algs.push_back(r.algorithm);
-  auto find = [&](const std::string& suite, const std::string& case_name,
-                  const std::string& alg) -> const BenchRecord* {
-    for (const BenchRecord& r : report.records)
-      if (r.suite == suite && r.case_name == case_name && r.algorithm == alg) return &r;
-    return nullptr;
-  };
+/// The per-pair table: µs per query of each algorithm, overlapping / separated, beside the
+/// published figure.
+void write_per_pair_table(const BenchReport& report, const std::vector<std::string>& algs,
+                          std::ostream& out) {
+  const BenchConfig& cfg = report.config;
+  out << "\n## Per pair (µs per query, median of " << cfg.samples
+      << " interleaved samples; each cell: overlapping / separated)\n\n";
+  write_table_head(out, "| pair | published |", "|---|---:|", algs,
+                   "speed-up of gjk-johnson (mean of both placements)");
+  for (const auto& [ia, ib] : kSeedPairs) {
+    const std::string pair = std::string(kDemoShapes[ia].name) + "-" + kDemoShapes[ib].name;
+    const std::string overlap = pair + " overlap", separated = pair + " separated";
+    if (!find_record(report, "seed", overlap, algs[0]) &&
+        !find_record(report, "seed", separated, algs[0]))
+      continue;
+    const auto pub = cfg.published_pair_us.find(pair);
+    out << "| " << pair << " | "
+        << (pub != cfg.published_pair_us.end() ? fixed(pub->second, 1) : "-") << " |";
+    for (const std::string& a : algs) {
+      const BenchRecord* o = find_record(report, "seed", overlap, a);
+      const BenchRecord* s = find_record(report, "seed", separated, a);
+      out << " " << (o ? fixed(o->ns_median / 1e3, 3) : "-") << " / "
+          << (s ? fixed(s->ns_median / 1e3, 3) : "-") << " |";
+    }
+    const BenchRecord* o = find_record(report, "seed", overlap, "gjk-johnson");
+    const BenchRecord* s = find_record(report, "seed", separated, "gjk-johnson");
+    if (pub != cfg.published_pair_us.end() && o && s)
+      out << " " << fixed(pub->second * 1e3 / (0.5 * (o->ns_median + s->ns_median)), 0) << "x |\n";
+    else
+      out << " - |\n";
+  }
+}
 
-  bool has_seed = false, has_scene = false;
-  for (const BenchRecord& r : report.records) {
-    has_seed |= r.suite == "seed";
-    has_scene |= r.suite == "scene";
-  }
-  if (has_seed) {
-    out << "\n## Per pair (µs per query, median of " << cfg.samples
-        << " interleaved samples; each cell: overlapping / separated)\n\n";
-    out << "| pair | published |";
-    for (const std::string& a : algs)
-      out << " " << a << " |";
-    out << " speed-up of gjk-johnson (mean of both placements) |\n|---|---:|";
-    for (std::size_t i = 0; i < algs.size(); ++i)
-      out << "---:|";
-    out << "---:|\n";
-    for (const auto& [ia, ib] : kSeedPairs) {
-      const std::string pair = std::string(kDemoShapes[ia].name) + "-" + kDemoShapes[ib].name;
-      if (!find("seed", pair + " overlap", algs[0]) && !find("seed", pair + " separated", algs[0]))
-        continue;
-      const auto pub = cfg.published_pair_us.find(pair);
-      out << "| " << pair << " | "
-          << (pub != cfg.published_pair_us.end() ? fixed(pub->second, 1) : "-") << " |";
-      for (const std::string& a : algs) {
-        const BenchRecord* o = find("seed", pair + " overlap", a);
-        const BenchRecord* s = find("seed", pair + " separated", a);
-        out << " " << (o ? fixed(o->ns_median / 1e3, 3) : "-") << " / "
-            << (s ? fixed(s->ns_median / 1e3, 3) : "-") << " |";
-      }
-      const BenchRecord* o = find("seed", pair + " overlap", "gjk-johnson");
-      const BenchRecord* s = find("seed", pair + " separated", "gjk-johnson");
-      if (pub != cfg.published_pair_us.end() && o && s)
-        out << " " << fixed(pub->second * 1e3 / (0.5 * (o->ns_median + s->ns_median)), 0)
-            << "x |\n";
-      else
-        out << " - |\n";
+/// The scene table: ms per pass over all pairs of N objects, beside the published figure.
+void write_scene_table(const BenchReport& report, const std::vector<std::string>& algs,
+                       std::ostream& out) {
+  const BenchConfig& cfg = report.config;
+  out << "\n## All pairs of N objects (ms per full pass, median of " << cfg.samples
+      << " samples)\n\n";
+  write_table_head(out, "| objects | pairs | published |", "|---:|---:|---:|", algs,
+                   "speed-up of gjk-johnson");
+  for (int n = kSceneStep; n <= kSceneMaxObjects; n += kSceneStep) {
+    const std::string name = std::to_string(n) + " objects";
+    const BenchRecord* any = find_record(report, "scene", name, algs[0]);
+    if (!any) continue;
+    const auto pub = cfg.published_scene_ms.find(n);
+    out << "| " << n << " | " << any->queries << " | "
+        << (pub != cfg.published_scene_ms.end() ? fixed(pub->second, 1) : "-") << " |";
+    for (const std::string& a : algs) {
+      const BenchRecord* r = find_record(report, "scene", name, a);
+      out << " " << (r ? fixed(r->ns_median * static_cast<double>(r->queries) / 1e6, 3) : "-")
+          << " |";
     }
+    const BenchRecord* j = find_record(report, "scene", name, "gjk-johnson");
+    if (pub != cfg.published_scene_ms.end() && j)
+      out << " " << fixed(pub->second * 1e6 / (j->ns_median * static_cast<double>(j->queries)), 0)
+          << "x |\n";
+    else
+      out << " - |\n";
   }
-  if (has_scene) {
-    out << "\n## All pairs of N objects (ms per full pass, median of " << cfg.samples
-        << " samples)\n\n";
-    out << "| objects | pairs | published |";
-    for (const std::string& a : algs)
-      out << " " << a << " |";
-    out << " speed-up of gjk-johnson |\n|---:|---:|---:|";
-    for (std::size_t i = 0; i < algs.size(); ++i)
-      out << "---:|";
-    out << "---:|\n";
-    for (int n = kSceneStep; n <= kSceneMaxObjects; n += kSceneStep) {
-      const std::string name = std::to_string(n) + " objects";
-      const BenchRecord* any = find("scene", name, algs[0]);
-      if (!any) continue;
-      const auto pub = cfg.published_scene_ms.find(n);
-      out << "| " << n << " | " << any->queries << " | "
-          << (pub != cfg.published_scene_ms.end() ? fixed(pub->second, 1) : "-") << " |";
-      for (const std::string& a : algs) {
-        const BenchRecord* r = find("scene", name, a);
-        out << " " << (r ? fixed(r->ns_median * static_cast<double>(r->queries) / 1e6, 3) : "-")
-            << " |";
-      }
-      const BenchRecord* j = find("scene", name, "gjk-johnson");
-      if (pub != cfg.published_scene_ms.end() && j)
-        out << " " << fixed(pub->second * 1e6 / (j->ns_median * static_cast<double>(j->queries)), 0)
-            << "x |\n";
-      else
-        out << " - |\n";
-    }
-  }
+}
+
+}  // namespace
+
+void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
+  write_seed_tables_preamble(report.config, out);
+  const std::vector<std::string> algs = algorithms_in_order(report);
+  if (has_suite(report, "seed")) write_per_pair_table(report, algs, out);
+  if (has_suite(report, "scene")) write_scene_table(report, algs, out);
   if (!report.notes.empty()) {
     out << "\n";
     for (const std::string& n : report.notes)
@@ -885,19 +965,37 @@ void write_seed_tables_markdown(const BenchReport& report, std::ostream& out) {
 
 // ---- config file ----------------------------------------------------------------------------
 
-BenchConfig load_bench_config(const std::string& path) {
-  toml::table t;
-  try {
-    t = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << path << ":" << e.source().begin.line << ": " << e.description();
-    throw BenchError(msg.str());
+namespace {
+
+/// A parsed bench configuration file and its typed readers. Every value is checked for its
+/// type and range (the command line's ranges): a value of the wrong type is an error, never
+/// ignored, and no value is narrowed.
+class BenchFile {
+ public:
+  explicit BenchFile(const std::string& path) : path_(path) {
+    try {
+      table_ = toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+      std::ostringstream msg;
+      msg << path << ":" << e.source().begin.line << ": " << e.description();
+      throw BenchError(msg.str());
+    }
   }
-  BenchConfig c;
-  auto fail = [&](const std::string& what) { throw BenchError(path + ": " + what); };
-  auto strings = [&](const char* key, std::vector<std::string>& out) {
-    if (const toml::node* n = t.get(key)) {
+
+  const toml::table& table() const { return table_; }
+
+  [[noreturn]] void fail(const std::string& what) const { throw BenchError(path_ + ": " + what); }
+
+  void allow_only(const std::set<std::string>& known) const {
+    for (const auto& [key, node] : table_) {
+      (void)node;
+      if (!known.count(std::string(key.str())))
+        fail("unknown key '" + std::string(key.str()) + "'");
+    }
+  }
+
+  void strings(const char* key, std::vector<std::string>& out) const {
+    if (const toml::node* n = table_.get(key)) {
       const toml::array* a = n->as_array();
       if (!a) fail(std::string(key) + " must be an array of strings");
       out.clear();
@@ -906,72 +1004,85 @@ BenchConfig load_bench_config(const std::string& path) {
         out.push_back(e.as_string()->get());
       }
     }
-  };
-  strings("suites", c.suites);
-  strings("algorithms", c.algorithms);
-  for (const auto& [key, node] : t) {
-    (void)node;
-    static const std::set<std::string> known = {
-        "suites", "algorithms", "reference", "samples",     "batch_seconds", "configurations",
-        "seed",   "cases",      "published", "description", "precision"};
-    if (!known.count(std::string(key.str()))) fail("unknown key '" + std::string(key.str()) + "'");
   }
-  // Every value checked for its type and range (the command line's ranges): a value of the
-  // wrong type is an error, never ignored, and no value is narrowed.
-  auto text = [&](const char* key, std::string& out) {
-    if (const toml::node* n = t.get(key)) {
+
+  void text(const char* key, std::string& out) const {
+    if (const toml::node* n = table_.get(key)) {
       if (!n->is_string()) fail(std::string(key) + " must be a string");
       out = n->as_string()->get();
     }
-  };
-  auto integer = [&](const char* key, std::int64_t lo,
-                     std::int64_t hi) -> std::optional<std::int64_t> {
-    const toml::node* n = t.get(key);
+  }
+
+  std::optional<std::int64_t> integer(const char* key, std::int64_t lo, std::int64_t hi) const {
+    const toml::node* n = table_.get(key);
     if (!n) return std::nullopt;
     if (!n->is_integer() || n->as_integer()->get() < lo || n->as_integer()->get() > hi)
       fail(std::string(key) + " must be an integer in [" + std::to_string(lo) + ", " +
            std::to_string(hi) + "]");
     return n->as_integer()->get();
-  };
-  text("reference", c.reference);
-  text("cases", c.case_filter);
+  }
+
+ private:
+  std::string path_;
+  toml::table table_;
+};
+
+/// `precision`, `samples`, `configurations`, `seed` and `batch_seconds`.
+void read_measurement(const BenchFile& f, BenchConfig& c) {
   std::string precision;
-  text("precision", precision);
+  f.text("precision", precision);
   if (!precision.empty()) {
     const auto p = precision_from_string(precision);
-    if (!p) fail("precision must be \"float\", \"double\" or \"long double\"");
+    if (!p) f.fail("precision must be \"float\", \"double\" or \"long double\"");
     c.precision = *p;
   }
-  if (auto v = integer("samples", 1, 100000)) c.samples = static_cast<int>(*v);
-  if (auto v = integer("configurations", 1, 100000)) c.configurations = static_cast<int>(*v);
-  if (auto v = integer("seed", 0, std::numeric_limits<std::int64_t>::max()))
+  if (auto v = f.integer("samples", 1, 100000)) c.samples = static_cast<int>(*v);
+  if (auto v = f.integer("configurations", 1, 100000)) c.configurations = static_cast<int>(*v);
+  if (auto v = f.integer("seed", 0, std::numeric_limits<std::int64_t>::max()))
     c.seed = static_cast<std::uint64_t>(*v);
-  if (const toml::node* n = t.get("batch_seconds")) {
+  if (const toml::node* n = f.table().get("batch_seconds")) {
     const auto v = n->value<double>();  // integers convert exactly
-    if (!v || !(*v >= 0 && *v <= 10)) fail("batch_seconds must be a number in [0, 10]");
+    if (!v || !(*v >= 0 && *v <= 10)) f.fail("batch_seconds must be a number in [0, 10]");
     c.batch_seconds = *v;
   }
-  if (const toml::table* pub = t["published"].as_table()) {
-    if (auto v = (*pub)["source"].value<std::string>()) c.published_source = *v;
-    if (const toml::table* pairs = (*pub)["pair_us"].as_table())
-      for (const auto& [k, v] : *pairs) {
-        const auto x = v.value<double>();
-        if (!x) fail("published.pair_us." + std::string(k.str()) + " must be a number");
-        c.published_pair_us[std::string(k.str())] = *x;
-      }
-    if (const toml::table* scene = (*pub)["scene_ms"].as_table())
-      for (const auto& [k, v] : *scene) {
-        const auto x = v.value<double>();
-        if (!x) fail("published.scene_ms." + std::string(k.str()) + " must be a number");
-        int objects = 0;
-        const std::string_view name = k.str();
-        const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), objects);
-        if (ec != std::errc() || end != name.data() + name.size() || objects < 1)
-          fail("published.scene_ms: key '" + std::string(name) +
+}
+
+/// [published]: the figures the seed tables are compared with (µs per pair, ms per scene).
+void read_published(const BenchFile& f, const toml::table& pub, BenchConfig& c) {
+  if (auto v = pub["source"].value<std::string>()) c.published_source = *v;
+  if (const toml::table* pairs = pub["pair_us"].as_table())
+    for (const auto& [k, v] : *pairs) {
+      const auto x = v.value<double>();
+      if (!x) f.fail("published.pair_us." + std::string(k.str()) + " must be a number");
+      c.published_pair_us[std::string(k.str())] = *x;
+    }
+  if (const toml::table* scene = pub["scene_ms"].as_table())
+    for (const auto& [k, v] : *scene) {
+      const auto x = v.value<double>();
+      if (!x) f.fail("published.scene_ms." + std::string(k.str()) + " must be a number");
+      int objects = 0;
+      const std::string_view name = k.str();
+      const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), objects);
+      if (ec != std::errc() || end != name.data() + name.size() || objects < 1)
+        f.fail("published.scene_ms: key '" + std::string(name) +
                "' must be an object count (an integer >= 1)");
-        c.published_scene_ms[objects] = *x;
-      }
-  }
+      c.published_scene_ms[objects] = *x;
+    }
+}
+
+}  // namespace
+
+BenchConfig load_bench_config(const std::string& path) {
+  const BenchFile f(path);
+  BenchConfig c;
+  f.strings("suites", c.suites);
+  f.strings("algorithms", c.algorithms);
+  f.allow_only({"suites", "algorithms", "reference", "samples", "batch_seconds", "configurations",
+                "seed", "cases", "published", "description", "precision"});
+  f.text("reference", c.reference);
+  f.text("cases", c.case_filter);
+  read_measurement(f, c);
+  if (const toml::table* pub = f.table()["published"].as_table()) read_published(f, *pub, c);
   return c;
 }
 
