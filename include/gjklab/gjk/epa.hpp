@@ -366,28 +366,19 @@ EpaSeed<T> grow_to_tetrahedron(std::array<SimplexVertexT<T>, 4>& p, int k, EpaSc
   return {Kind::tetrahedron};
 }
 
-}  // namespace detail
-
-/// EPA on the pair after GJK: `gjk` must be gjk_distance's answer for the same pair (its
-/// final simplex starts the expansion). Separated pairs and GJK failures pass GJK's answer
-/// through (see EpaStop). Throws std::invalid_argument if the options are invalid. The parts:
-/// the GJK simplex reduced (drop_degenerate_points) and grown into a tetrahedron
-/// (grow_to_tetrahedron), then the loop below on the polytope (epa_polytope.hpp).
-template <SupportMap A, SupportMap B, class T>
-EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk,
-                           const EpaOptions& options, EpaPolytopeT<T>& polytope) {
-  using Point = Vec3T<T>;
-  detail::validate(options);
+/// The answer's part that GJK gives: its counts and witnesses; for separated pairs and GJK
+/// failures, the whole answer (GJK's, passed through; see EpaStop).
+template <class T>
+EpaResultT<T> epa_start_from_gjk(const DistanceResultT<T>& gjk) {
   EpaResultT<T> out;
   out.gjk_iterations = gjk.iterations;
   out.support_calls = gjk.support_calls;
   out.witness_a = gjk.witness_a;
   out.witness_b = gjk.witness_b;
-
   if (!gjk.intersect) {
     out.intersect = false;
     out.distance = gjk.distance;
-    const Point ab = gjk.witness_b - gjk.witness_a;
+    const Vec3T<T> ab = gjk.witness_b - gjk.witness_a;
     const T n = ab.norm();
     if (n > 0 && std::isfinite(n)) out.normal = ab / n;
     out.termination = gjk.termination;
@@ -396,6 +387,76 @@ EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk
   }
   out.intersect = true;
   out.distance = 0;
+  return out;
+}
+
+/// The expansion: until the closest face's plane is within the tolerances of A − B's support
+/// in its normal, or a limit or a degeneracy stops it. Returns why it stopped; `closest` is
+/// then the face that answers.
+template <class T, class Support>
+EpaStop expand_polytope(EpaPolytopeT<T>& polytope, const EpaOptions& options, EpaScale<T>& scale,
+                        Support&& support, EpaResultT<T>& out, int& closest) {
+  for (int step = 0;; ++step) {
+    closest = polytope.closest_face();
+    const Vec3T<T> n = polytope.faces[closest].normal;
+    const T lower = polytope.faces[closest].distance;
+    if (out.iterations >= options.max_iterations) return EpaStop::step_limit;
+    ++out.iterations;
+    const SimplexVertexT<T> w = support(n);
+    if (!scale.take(w)) return EpaStop::non_finite;
+    const T upper = n.dot(w.w);
+    out.depth_upper_bound = std::min(out.depth_upper_bound, upper);
+    const T gap = upper - lower;
+    if (gap <= static_cast<T>(options.relative_gap) * lower || gap <= scale.noise())
+      return EpaStop::converged;
+    if (polytope.has_vertex(w.w)) return EpaStop::repeated_support;
+    // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise). A
+    // face whose plane holds w up to the noise level counts as seen: removing it keeps the
+    // polytope convex, drops vertices that are not extreme (support points of A − B on a face
+    // of A − B, which ties produce), and never leaves w on the line of a horizon edge, which
+    // would make a new face without area.
+    const int visible = polytope.mark_visible(closest, w.w, scale.noise(), step);
+    if (!polytope.cone_fits(visible, options.max_faces)) return EpaStop::out_of_faces;
+    // The horizon must be one simple loop (a visible region that is a disc); otherwise
+    // rounding has made the visibility inconsistent and the expansion would break the mesh.
+    if (!polytope.link_horizon()) return EpaStop::degenerate_polytope;
+    if (!polytope.add_cone(w, step, lower, scale.noise())) return EpaStop::degenerate_polytope;
+  }
+}
+
+/// The answer of a face of the polytope: its depth and normal, and the witnesses of the
+/// origin's projection on it.
+template <class T>
+void take_face_answer(const EpaPolytopeT<T>& polytope, int closest, EpaResultT<T>& out) {
+  const typename EpaPolytopeT<T>::Face& f = polytope.faces[closest];
+  out.depth = std::max(f.distance, T(0));
+  out.normal = f.normal;
+  const Vec3T<T> x = f.distance * f.normal;
+  std::array<T, 3> l;
+  const auto& v = polytope.vertices;
+  const SimplexVertexT<T>&v0 = v[f.v[0]], &v1 = v[f.v[1]], &v2 = v[f.v[2]];
+  if (barycentric(x, v0.w, v1.w, v2.w, l)) {
+    out.witness_a = l[0] * v0.a + l[1] * v1.a + l[2] * v2.a;
+    out.witness_b = l[0] * v0.b + l[1] * v1.b + l[2] * v2.b;
+  }
+  out.faces = polytope.alive();
+}
+
+}  // namespace detail
+
+/// EPA on the pair after GJK: `gjk` must be gjk_distance's answer for the same pair (its
+/// final simplex starts the expansion). Separated pairs and GJK failures pass GJK's answer
+/// through (see EpaStop). Throws std::invalid_argument if the options are invalid. The parts:
+/// the GJK simplex reduced (drop_degenerate_points) and grown into a tetrahedron
+/// (grow_to_tetrahedron), then the expansion (expand_polytope) on the polytope
+/// (epa_polytope.hpp).
+template <SupportMap A, SupportMap B, class T>
+EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk,
+                           const EpaOptions& options, EpaPolytopeT<T>& polytope) {
+  using Point = Vec3T<T>;
+  detail::validate(options);
+  EpaResultT<T> out = detail::epa_start_from_gjk(gjk);
+  if (!gjk.intersect) return out;
 
   auto support = [&](const Point& d) {
     ++out.support_calls;
@@ -426,50 +487,9 @@ EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk
   if (!polytope.start_tetrahedron(p)) return finish(EpaStop::degenerate_polytope);
 
   int closest = 0;
-  // The answer: the closest face's depth, normal and witnesses.
-  auto answer = [&](EpaStop stop) -> EpaResultT<T>& {
-    const typename EpaPolytopeT<T>::Face& f = polytope.faces[closest];
-    out.depth = std::max(f.distance, T(0));
-    out.normal = f.normal;
-    const Point x = f.distance * f.normal;
-    std::array<T, 3> l;
-    const auto& v = polytope.vertices;
-    const SimplexVertexT<T>&v0 = v[f.v[0]], &v1 = v[f.v[1]], &v2 = v[f.v[2]];
-    if (detail::barycentric(x, v0.w, v1.w, v2.w, l)) {
-      out.witness_a = l[0] * v0.a + l[1] * v1.a + l[2] * v2.a;
-      out.witness_b = l[0] * v0.b + l[1] * v1.b + l[2] * v2.b;
-    }
-    out.faces = polytope.alive();
-    return finish(stop);
-  };
-
-  for (int step = 0;; ++step) {
-    closest = polytope.closest_face();
-    const Point n = polytope.faces[closest].normal;
-    const T lower = polytope.faces[closest].distance;
-    if (out.iterations >= options.max_iterations) return answer(EpaStop::step_limit);
-    ++out.iterations;
-    const SimplexVertexT<T> w = support(n);
-    if (!scale.take(w)) return answer(EpaStop::non_finite);
-    const T upper = n.dot(w.w);
-    out.depth_upper_bound = std::min(out.depth_upper_bound, upper);
-    const T gap = upper - lower;
-    if (gap <= static_cast<T>(options.relative_gap) * lower || gap <= scale.noise())
-      return answer(EpaStop::converged);
-    if (polytope.has_vertex(w.w)) return answer(EpaStop::repeated_support);
-    // Faces that w sees, by flood fill from the closest one (which it sees: gap > noise). A
-    // face whose plane holds w up to the noise level counts as seen: removing it keeps the
-    // polytope convex, drops vertices that are not extreme (support points of A − B on a face
-    // of A − B, which ties produce), and never leaves w on the line of a horizon edge, which
-    // would make a new face without area.
-    const int visible = polytope.mark_visible(closest, w.w, scale.noise(), step);
-    if (!polytope.cone_fits(visible, options.max_faces)) return answer(EpaStop::out_of_faces);
-    // The horizon must be one simple loop (a visible region that is a disc); otherwise
-    // rounding has made the visibility inconsistent and the expansion would break the mesh.
-    if (!polytope.link_horizon()) return answer(EpaStop::degenerate_polytope);
-    if (!polytope.add_cone(w, step, lower, scale.noise()))
-      return answer(EpaStop::degenerate_polytope);
-  }
+  const EpaStop stop = detail::expand_polytope(polytope, options, scale, support, out, closest);
+  detail::take_face_answer(polytope, closest, out);
+  return finish(stop);
 }
 
 /// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect, in the
