@@ -160,7 +160,7 @@ void check_outcome(const experiment::AlgorithmInfo& algorithm, const experiment:
 }
 
 bool same(const exact::Rational& x, const exact::Rational& y) {
-  return x.numerator == y.numerator && x.denominator == y.denominator;
+  return x == y;
 }
 
 /// Exact rationals of two answers agree (the depth where both have one).

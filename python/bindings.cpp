@@ -197,7 +197,7 @@ py::object vector_or_none(const std::optional<Vec3>& v) {
 py::object fraction(const exact::Rational& r) {
   static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
   // Decimal strings of any length: Python's int parses them exactly.
-  return Fraction(py::int_(py::str(r.numerator)), py::int_(py::str(r.denominator)));
+  return Fraction(py::int_(py::str(r.numerator())), py::int_(py::str(r.denominator())));
 }
 
 /// One algorithm's answer, with the JSON names of `gjklab query`.
@@ -573,11 +573,11 @@ void def_exact_answer(py::module_& m) {
         const auto& a = e.answer;
         std::string text =
             "gjklab.ExactAnswer(intersect=" + std::string(a.intersect ? "True" : "False") +
-            ", distance_squared=" + a.distance_squared.numerator + "/" +
-            a.distance_squared.denominator;
+            ", distance_squared=" + a.distance_squared.numerator() + "/" +
+            a.distance_squared.denominator();
         if (a.depth_squared)
           text +=
-              ", depth_squared=" + a.depth_squared->numerator + "/" + a.depth_squared->denominator;
+              ", depth_squared=" + a.depth_squared->numerator() + "/" + a.depth_squared->denominator();
         return text + ", method='" + std::string(to_string(a.method)) + "')";
       });
 }

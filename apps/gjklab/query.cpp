@@ -50,16 +50,16 @@ std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
     // For sphere-swept shapes the exact rationals are the cores' (the swept answers are
     // irrational in general), and their keys say so.
     const std::string prefix = o.exact->swept ? "core_" : "";
-    j[prefix + "distance2_num"] = o.exact->distance_squared.numerator;
-    j[prefix + "distance2_den"] = o.exact->distance_squared.denominator;
+    j[prefix + "distance2_num"] = o.exact->distance_squared.numerator();
+    j[prefix + "distance2_den"] = o.exact->distance_squared.denominator();
     j["method"] = to_string(o.exact->method);
     if (o.exact->hull_vertices_a >= 0) {
       j["hull_vertices_a"] = o.exact->hull_vertices_a;
       j["hull_vertices_b"] = o.exact->hull_vertices_b;
     }
     if (o.exact->depth_squared) {
-      j[prefix + "depth2_num"] = o.exact->depth_squared->numerator;
-      j[prefix + "depth2_den"] = o.exact->depth_squared->denominator;
+      j[prefix + "depth2_num"] = o.exact->depth_squared->numerator();
+      j[prefix + "depth2_den"] = o.exact->depth_squared->denominator();
       j["depth_method"] = to_string(o.exact->depth_method);
     }
   }

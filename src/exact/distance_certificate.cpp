@@ -149,17 +149,6 @@ Int as_mpz(const Wide& x) {
   return z;
 }
 
-/// q := N·N / D² · 4^exponent, in lowest terms.
-template <class I>
-void squared_length(const Vec3Of<I>& n, const I& d, long exponent, mpq_ptr q) {
-  const Int nn = as_mpz(dot(n, n)), dd = as_mpz(d * d);
-  mpq_set_num(q, nn.get_mpz_t());
-  mpq_set_den(q, dd.get_mpz_t());
-  mpq_canonicalize(q);
-  if (exponent > 0) mpq_mul_2exp(q, q, static_cast<mp_bitcnt_t>(2 * exponent));
-  if (exponent < 0) mpq_div_2exp(q, q, static_cast<mp_bitcnt_t>(-2 * exponent));
-}
-
 /// The double nearest to num/den·2^exponent: without GMP where the fast conversion proves
 /// its answer, else with it.
 double nearest_double_of(const Int& num, const Int& den, long exponent) {
@@ -170,14 +159,32 @@ double nearest_double_of(const Wide& num, const Wide& den, long exponent) {
   return nearest_double_of(as_mpz(num), as_mpz(den), exponent);
 }
 
-/// The double nearest to √(N·N / D²·4^exponent), the distance; d2 is that value as a rational.
-double nearest_distance(const ExactClosest<Int>&, long, mpq_srcptr d2) {
-  return detail::nearest_sqrt(d2);
+/// The double nearest to √(nn / dd · 4^exponent) (nn ≥ 0, dd > 0).
+double nearest_sqrt_of(const Int& nn, const Int& dd, long exponent) {
+  detail::Mpq q;  // not in lowest terms: nearest_sqrt needs no gcd
+  mpz_mul_2exp(mpq_numref(q.get()), nn.get_mpz_t(), exponent > 0 ? 2 * exponent : 0);
+  mpz_mul_2exp(mpq_denref(q.get()), dd.get_mpz_t(), exponent < 0 ? -2 * exponent : 0);
+  return detail::nearest_sqrt(q.get());
 }
-double nearest_distance(const ExactClosest<Wide>& c, long exponent, mpq_srcptr d2) {
-  const Wide nn = dot(c.numerator, c.numerator), dd = c.denominator * c.denominator;
+double nearest_sqrt_of(const Wide& nn, const Wide& dd, long exponent) {
   if (const std::optional<double> r = detail::nearest_sqrt(nn, dd, 2 * exponent)) return *r;
-  return detail::nearest_sqrt(d2);
+  return nearest_sqrt_of(as_mpz(nn), as_mpz(dd), exponent);
+}
+
+/// The exact squared distance N·N / D² · 4^exponent and its nearest double square root. The
+/// rational's digits are made on first use (reducing it costs more than the certificate).
+template <class I>
+void set_distance(const Vec3Of<I>& n, const I& d, long exponent, DistanceCertificate& out) {
+  I nn = dot(n, n), dd = d * d;
+  out.distance = nearest_sqrt_of(nn, dd, exponent);
+  out.distance_squared =
+      detail::lazy_rational(false, [nn = std::move(nn), dd = std::move(dd), exponent](mpq_ptr q) {
+        const Int num = as_mpz(nn), den = as_mpz(dd);
+        mpq_set_num(q, num.get_mpz_t());
+        mpq_set_den(q, den.get_mpz_t());
+        if (exponent > 0) mpz_mul_2exp(mpq_numref(q), mpq_numref(q), 2 * exponent);
+        if (exponent < 0) mpz_mul_2exp(mpq_denref(q), mpq_denref(q), -2 * exponent);
+      });
 }
 
 /// The nearest double to Σ weights[k]·points[k] / denominator · 2^exponent, per coordinate.
@@ -271,10 +278,7 @@ std::optional<DistanceCertificate> certify_in_frame(std::span<const Vec3> a,
       out.witness_a = nearest_combination(*c, simplex.points_a(), exponent);
       out.witness_b = nearest_combination(*c, simplex.points_b(), exponent);
       simplex.keep(c->subset);
-      detail::Mpq d2;
-      if (!intersect) squared_length(c->numerator, c->denominator, exponent, d2.get());
-      out.distance_squared = detail::to_rational(d2.get());
-      out.distance = intersect ? 0.0 : nearest_distance(*c, exponent, d2.get());
+      if (!intersect) set_distance(c->numerator, c->denominator, exponent, out);
       out.feature.simplex.assign(simplex.pairs.begin(), simplex.pairs.begin() + simplex.size);
       out.repair_steps = step;
       return out;

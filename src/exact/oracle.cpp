@@ -117,15 +117,15 @@ Rational minkowski_depth_squared(Hulls& hulls) {
 }
 
 bool same(const Rational& x, const Rational& y) {
-  return x.numerator == y.numerator && x.denominator == y.denominator;  // both in lowest terms
+  return x.numerator() == y.numerator() && x.denominator() == y.denominator();  // both in lowest terms
 }
 
 /// The audit of OracleOptions::verify: the certified rational must equal the QP's.
 void audit(const char* what, const Rational& certified, const Rational& qp) {
   if (!same(certified, qp))
     throw CertificateMismatch(std::string("exact oracle: certified ") + what + " " +
-                              certified.numerator + "/" + certified.denominator +
-                              " differs from the QP's " + qp.numerator + "/" + qp.denominator);
+                              certified.numerator() + "/" + certified.denominator() +
+                              " differs from the QP's " + qp.numerator() + "/" + qp.denominator());
 }
 
 }  // namespace

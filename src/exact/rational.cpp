@@ -7,8 +7,10 @@
 // rounded result). No floating-point operation other than that final ldexp is involved.
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gmp_support.hpp"
 
@@ -25,10 +27,11 @@ long bit_length(mpz_srcptr x) {
 
 /// Sets n, d (d > 0, lowest terms not required) from r; returns the sign of the value.
 int parse(const Rational& r, mpz_ptr n, mpz_ptr d) {
-  if (r.numerator.empty() || mpz_set_str(n, r.numerator.c_str(), 10) != 0)
-    throw std::invalid_argument("Rational: malformed numerator '" + r.numerator + "'");
-  if (r.denominator.empty() || mpz_set_str(d, r.denominator.c_str(), 10) != 0)
-    throw std::invalid_argument("Rational: malformed denominator '" + r.denominator + "'");
+  const std::string &num = r.numerator(), &den = r.denominator();
+  if (num.empty() || mpz_set_str(n, num.c_str(), 10) != 0)
+    throw std::invalid_argument("Rational: malformed numerator '" + num + "'");
+  if (den.empty() || mpz_set_str(d, den.c_str(), 10) != 0)
+    throw std::invalid_argument("Rational: malformed denominator '" + den + "'");
   if (mpz_sgn(d) == 0) throw std::invalid_argument("Rational: zero denominator");
   const int sign = mpz_sgn(n) * mpz_sgn(d);
   mpz_abs(n, n);
@@ -109,6 +112,52 @@ std::string decimal(mpz_srcptr z) {
 
 }  // namespace
 
+namespace {
+
+/// A value given by its digits.
+class DigitsSource final : public Rational::Source {
+ public:
+  explicit DigitsSource(Digits digits) : digits_(std::move(digits)) {}
+  bool is_zero() const override { return digits_.numerator == "0"; }
+
+ private:
+  Digits make_digits() const override { return digits_; }
+  Digits digits_;
+};
+
+const std::shared_ptr<const Rational::Source>& zero_source() {
+  static const std::shared_ptr<const Rational::Source> zero =
+      std::make_shared<const DigitsSource>(Rational::Source::Digits{"0", "1"});
+  return zero;
+}
+
+}  // namespace
+
+Rational::Rational() : source_(zero_source()) {}
+
+Rational::Rational(std::string numerator, std::string denominator)
+    : source_(std::make_shared<const DigitsSource>(
+          Source::Digits{std::move(numerator), std::move(denominator)})) {}
+
+Rational::Rational(std::shared_ptr<const Source> source) : source_(std::move(source)) {}
+
+const std::string& Rational::numerator() const {
+  return source_->digits().numerator;
+}
+
+const std::string& Rational::denominator() const {
+  return source_->digits().denominator;
+}
+
+bool Rational::is_zero() const {
+  return source_->is_zero();
+}
+
+bool operator==(const Rational& x, const Rational& y) {
+  return x.source_ == y.source_ ||
+         (x.numerator() == y.numerator() && x.denominator() == y.denominator());
+}
+
 double Rational::to_double() const {
   detail::Mpz n, d;
   const int sign = parse(*this, n.get(), d.get());
@@ -158,10 +207,7 @@ double nearest_double(mpq_srcptr q) {
 }
 
 Rational to_rational(mpq_srcptr q) {
-  Rational r;
-  r.numerator = decimal(mpq_numref(q));
-  r.denominator = decimal(mpq_denref(q));
-  return r;
+  return Rational(decimal(mpq_numref(q)), decimal(mpq_denref(q)));
 }
 
 }  // namespace detail

@@ -44,7 +44,7 @@ double distance_difference(const Vec3& p, const Vec3& q, const Rational& distanc
     mpq_add(s.get(), s.get(), x.get());
   }
   if (mpq_set_str(t.get(),
-                  (distance_squared.numerator + "/" + distance_squared.denominator).c_str(),
+                  (distance_squared.numerator() + "/" + distance_squared.denominator()).c_str(),
                   10) != 0)
     throw std::invalid_argument("witness: malformed rational");
   mpq_canonicalize(t.get());

@@ -19,8 +19,8 @@ ExactRecord exact_record(const exact::OracleAnswer& a, double band) {
   ExactRecord r;
   r.intersect = a.intersect;
   r.distance = a.distance;
-  r.distance2_num = a.distance_squared.numerator;
-  r.distance2_den = a.distance_squared.denominator;
+  r.distance2_num = a.distance_squared.numerator();
+  r.distance2_den = a.distance_squared.denominator();
   if (a.depth) r.depth = *a.depth;
   r.hull_vertices_a = a.hull_vertices_a;
   r.hull_vertices_b = a.hull_vertices_b;

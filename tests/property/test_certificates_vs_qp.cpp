@@ -31,7 +31,7 @@ struct Tally {
 };
 
 bool same(const exact::Rational& x, const exact::Rational& y) {
-  return x.numerator == y.numerator && x.denominator == y.denominator;
+  return x.numerator() == y.numerator() && x.denominator() == y.denominator();
 }
 
 const experiment::AlgorithmInfo& gjk_certified = *experiment::find_algorithm("gjk-certified");
@@ -45,9 +45,9 @@ void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
   const exact::OracleOptions qp{.depth = depth, .certificates = false, .hull_vertices = false};
   const exact::OracleAnswer c = solve_certified(pa, pb, {}, certified).answer;
   const exact::OracleAnswer q = exact::solve(a, b, qp);
-  INFO(label << ": certified " << c.distance_squared.numerator << "/"
-             << c.distance_squared.denominator << " (" << to_string(c.method) << "), QP "
-             << q.distance_squared.numerator << "/" << q.distance_squared.denominator);
+  INFO(label << ": certified " << c.distance_squared.numerator() << "/"
+             << c.distance_squared.denominator() << " (" << to_string(c.method) << "), QP "
+             << q.distance_squared.numerator() << "/" << q.distance_squared.denominator());
   REQUIRE(q.method == exact::AnswerMethod::qp);
   CHECK(same(c.distance_squared, q.distance_squared));
   CHECK(c.intersect == q.intersect);
@@ -61,9 +61,9 @@ void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
   if (depth && q.intersect) {
     REQUIRE(c.depth_squared.has_value());
     REQUIRE(q.depth_squared.has_value());
-    INFO("depth certified " << c.depth_squared->numerator << "/" << c.depth_squared->denominator
-                            << ", Minkowski hull " << q.depth_squared->numerator << "/"
-                            << q.depth_squared->denominator);
+    INFO("depth certified " << c.depth_squared->numerator() << "/" << c.depth_squared->denominator()
+                            << ", Minkowski hull " << q.depth_squared->numerator() << "/"
+                            << q.depth_squared->denominator());
     CHECK(same(*c.depth_squared, *q.depth_squared));
     ++t.depths;
     t.depths_certified += c.depth_method == exact::AnswerMethod::certified;

@@ -25,7 +25,7 @@ namespace {
 using Cloud = std::vector<Vec3>;
 
 bool same(const exact::Rational& x, const exact::Rational& y) {
-  return x.numerator == y.numerator && x.denominator == y.denominator;
+  return x.numerator() == y.numerator() && x.denominator() == y.denominator();
 }
 
 exact::Rational rational(const char* num, const char* den = "1") {

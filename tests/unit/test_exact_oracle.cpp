@@ -33,19 +33,19 @@ mpq_class exact(double x) {
 }  // exact for finite doubles
 
 mpq_class value(const ex::Rational& r) {
-  mpq_class q(r.numerator + "/" + r.denominator, 10);
+  mpq_class q(r.numerator() + "/" + r.denominator(), 10);
   return q;
 }
 
 /// The oracle's rational is in lowest terms with a positive denominator and equals expected.
 void require_rational(const ex::Rational& r, const mpq_class& expected) {
-  mpq_class q(r.numerator + "/" + r.denominator, 10);
+  mpq_class q(r.numerator() + "/" + r.denominator(), 10);
   mpq_class canonical = q;
   canonical.canonicalize();
-  CHECK(canonical.get_num().get_str() == r.numerator);
-  CHECK(canonical.get_den().get_str() == r.denominator);
+  CHECK(canonical.get_num().get_str() == r.numerator());
+  CHECK(canonical.get_den().get_str() == r.denominator());
   CHECK(canonical.get_den() >= 1);
-  INFO("oracle " << r.numerator << "/" << r.denominator << " expected " << expected.get_str());
+  INFO("oracle " << r.numerator() << "/" << r.denominator() << " expected " << expected.get_str());
   CHECK(canonical == expected);
 }
 
@@ -556,7 +556,7 @@ TEST_CASE("exact oracle: point vs degenerate triangle (regression)", "[unit][exa
   CHECK(ans.distance > 0.17);
   CHECK(ans.distance < 0.172);
   CHECK(ans.hull_vertices_b == 2);
-  CHECK(ans.distance_squared.denominator != "1");
+  CHECK(ans.distance_squared.denominator() != "1");
 }
 
 TEST_CASE("exact oracle: penetration depth of boxes", "[unit][exact]") {

@@ -142,8 +142,8 @@ TEST_CASE("distance certificate on a face with a point finer than the hint's fra
         gjklab::exact::DistanceHint{}}) {
     const auto cert = gjklab::exact::certify_distance(a, b, hint);
     REQUIRE(cert.has_value());
-    CHECK(cert->distance_squared.numerator == qp.distance_squared.numerator);
-    CHECK(cert->distance_squared.denominator == qp.distance_squared.denominator);
+    CHECK(cert->distance_squared.numerator() == qp.distance_squared.numerator());
+    CHECK(cert->distance_squared.denominator() == qp.distance_squared.denominator());
     CHECK(cert->distance == qp.distance);
   }
 }

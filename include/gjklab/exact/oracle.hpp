@@ -7,6 +7,7 @@
 // CGAL's headers.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -17,13 +18,32 @@
 
 namespace gjklab::exact {
 
-/// An exact non-negative rational num/den in lowest terms, as decimal strings (den ≥ 1).
-struct Rational {
-  std::string numerator = "0";
-  std::string denominator = "1";
+/// An exact rational num/den in lowest terms, as decimal strings (den ≥ 1).
+///
+/// A certificate finds its value as an unreduced fraction of integers of a few hundred bits.
+/// Reducing it (a gcd) and printing it in decimal cost more than the certificate itself, and
+/// most answers are never printed (benchmarks, booleans, distances as doubles), so the digits
+/// are made on first use, once, by the value's source, which copies share.
+class Rational {
+ public:
+  /// Makes the digits on first use; defined inside the exact layer.
+  class Source;
+
+  Rational();  ///< 0/1
+  /// The value num/den, given in lowest terms.
+  Rational(std::string numerator, std::string denominator);
+  explicit Rational(std::shared_ptr<const Source> source);
+
+  const std::string& numerator() const;
+  const std::string& denominator() const;
   /// The nearest double to num/den (round to nearest, ties to even).
   double to_double() const;
-  bool is_zero() const { return numerator == "0"; }
+  bool is_zero() const;
+  /// The same value (both sides are in lowest terms, so equal digits).
+  friend bool operator==(const Rational& x, const Rational& y);
+
+ private:
+  std::shared_ptr<const Source> source_;
 };
 
 /// Returns the double nearest to √(num/den) (correctly rounded).
