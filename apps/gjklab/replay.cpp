@@ -41,6 +41,20 @@ experiment::CaseGeometry case_geometry(const experiment::Archive& archive, const
   return {std::move(g.a), std::move(g.b)};
 }
 
+/// The case's recorded warm start (`stream` family), regenerated from the archived experiment
+/// when an algorithm of the archive was warm-started; empty otherwise.
+std::vector<SimplexVertex> case_warm_start(const experiment::Archive& archive, const CaseResult& c,
+                                           const std::string& file) {
+  bool wanted = false;
+  for (const auto& options : archive.header.algorithm_options)
+    for (const auto& [key, value] : options)
+      wanted = wanted || (key == "warm_start" && value == "true");
+  if (!wanted) return {};
+  const experiment::ExperimentConfig config =
+      experiment::parse_experiment(archive.header.experiment_text, file + " (archived experiment)");
+  return experiment::generate_case(config, c.record.case_id).warm;
+}
+
 /// Prints a trace. The boolean walk's rows hold ‖d‖² and its separation test d·w (separated
 /// when < 0), and have no closest point, weights or lower bound; after a `cycled` row the
 /// distance walk's rows follow.
@@ -122,6 +136,7 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
     }
     const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
     const Polytope a(geometry.a), b(geometry.b);
+    const std::vector<SimplexVertex> warm = case_warm_start(archive, *found, args.archive);
     const auto& rec = found->record;
     const SweptRadii radii{rec.radius_a, rec.radius_b};
     out << "case " << rec.case_id << " of " << args.archive << ": family '"
@@ -155,8 +170,8 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
       TraceRecorder trace;
       const bool traced = args.trace && experiment::can_trace(*info, radii);
       const experiment::Outcome now =
-          traced ? experiment::run_algorithm_traced(*info, a, b, radii, spec.options, trace)
-                 : experiment::run_algorithm(*info, a, b, radii, spec.options);
+          traced ? experiment::run_algorithm_traced(*info, a, b, radii, spec.options, trace, warm)
+                 : experiment::run_algorithm(*info, a, b, radii, spec.options, warm);
       const AlgorithmRecord& then = found->algorithms[k];
       out << label << ": intersect " << now.intersect;
       if (now.distance) out << ", distance " << fmt("%.17g", *now.distance);

@@ -225,6 +225,13 @@ constexpr auto kGjkBooleanRows = std::to_array<OptionRow>({
 constexpr auto kGjkDistanceRows =
     join(distance_rows<distance_options>(), std::array<OptionRow, 1>{kPrecisionRow});
 
+// warm_start last, so that the variants' earlier rows keep their order in archived descriptions.
+constexpr auto kGjkVariantRows =
+    join(kGjkDistanceRows,
+         std::to_array<OptionRow>({
+             {"warm_start", [](AlgorithmOptions& o) -> bool& { return o.warm_start; }},
+         }));
+
 constexpr auto kGjkNesterovRows =
     join(distance_rows<nesterov_options>(),
          std::to_array<OptionRow>({
@@ -305,6 +312,9 @@ OptionSchema gjk_boolean_option_schema() {
 }
 OptionSchema gjk_distance_option_schema() {
   return kGjkDistanceRows;
+}
+OptionSchema gjk_variant_option_schema() {
+  return kGjkVariantRows;
 }
 OptionSchema gjk_nesterov_option_schema() {
   return kGjkNesterovRows;

@@ -271,11 +271,25 @@ constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_vi
           .options = options};
 }
 
-/// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance.
+/// The query of gjk_variant_entry started from a recorded simplex (vertex indices re-read on
+/// the shapes, see gjk_distance_warm_with).
+template <class Sub>
+Outcome warm_distance_with(const Polytope& a, const Polytope& b,
+                           std::span<const SimplexVertex> warm, const AlgorithmOptions& o,
+                           TraceRecorder* trace) {
+  return from_distance(trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
+                             : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance));
+}
+
+/// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance (and
+/// warm_start).
 template <class Sub>
 AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
-  return gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>, SubAlgorithmQuery<Sub>>(
-      name, description, gjk_distance_option_schema());
+  AlgorithmInfo entry =
+      gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>, SubAlgorithmQuery<Sub>>(
+          name, description, gjk_variant_option_schema());
+  entry.run_warm = warm_distance_with<Sub>;
+  return entry;
 }
 
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
@@ -692,8 +706,26 @@ bool in_other_precision(const AlgorithmInfo& algorithm, const AlgorithmOptions& 
 
 }  // namespace
 
+namespace {
+
+/// Whether the query starts from the case's recorded simplex; throws std::invalid_argument
+/// naming the algorithm when warm_start asks for what it cannot do.
+bool warm_started(const AlgorithmInfo& algorithm, const SweptRadii& radii,
+                  const AlgorithmOptions& options, std::span<const SimplexVertex> warm) {
+  if (!options.warm_start || warm.empty()) return false;
+  if (!algorithm.run_warm || radii.any() || options.precision != ScalarPrecision::double_float)
+    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
+                                "' cannot be warm-started here (plain polytopes in double only)");
+  return true;
+}
+
+}  // namespace
+
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
-                      const SweptRadii& radii, const AlgorithmOptions& options) {
+                      const SweptRadii& radii, const AlgorithmOptions& options,
+                      std::span<const SimplexVertex> warm) {
+  if (warm_started(algorithm, radii, options, warm))
+    return algorithm.run_warm(a, b, warm, options, nullptr);
   if (in_other_precision(algorithm, options))
     return algorithm.run_at_precision(a, b, radii, options, nullptr);
   if (!radii.any()) return algorithm.run(a, b, options);
@@ -703,10 +735,12 @@ Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const P
 
 Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                              const SweptRadii& radii, const AlgorithmOptions& options,
-                             TraceRecorder& trace) {
+                             TraceRecorder& trace, std::span<const SimplexVertex> warm) {
   if (!can_trace(algorithm, radii))
     throw std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' cannot be traced" +
                                 (radii.any() ? " on sphere-swept shapes" : ""));
+  if (warm_started(algorithm, radii, options, warm))
+    return algorithm.run_warm(a, b, warm, options, &trace);
   if (in_other_precision(algorithm, options))
     return algorithm.run_at_precision(a, b, radii, options, &trace);
   if (!radii.any()) return algorithm.run_traced(a, b, options, trace);

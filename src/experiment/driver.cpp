@@ -41,12 +41,13 @@ double median(std::vector<double> v) {
 
 /// Median wall time of `repetitions` runs of one query, in ns.
 double time_query(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
-                  const SweptRadii& radii, const AlgorithmOptions& options, int repetitions) {
+                  const SweptRadii& radii, const AlgorithmOptions& options, int repetitions,
+                  std::span<const SimplexVertex> warm) {
   std::vector<double> ns;
   ns.reserve(repetitions);
   for (int r = 0; r < repetitions; ++r) {
     const auto start = Clock::now();
-    const Outcome o = run_algorithm(algorithm, a, b, radii, options);
+    const Outcome o = run_algorithm(algorithm, a, b, radii, options, warm);
     const auto stop = Clock::now();
     if (o.iterations < 0) break;  // keeps the call from being optimised away
     ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
@@ -203,7 +204,7 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   RoundedExact rounded_exact(config, generated.a, generated.b, radii, answer);
   for (const AlgorithmSpec& spec : config.algorithms) {
     const AlgorithmInfo& algorithm = *find_algorithm(spec.name);
-    outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options));
+    outcomes.push_back(run_algorithm(algorithm, a, b, radii, spec.options, generated.warm));
     result.algorithms.push_back(algorithm_record(outcomes.back()));
     if (result.exact) judge(result.algorithms.back(), outcomes.back(), *result.exact, size);
     if (result.exact && spec.options.precision != ScalarPrecision::double_float) {
@@ -215,7 +216,7 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
                   generated.a, generated.b);
     if (config.timing)
       result.algorithms.back().time_ns =
-          time_query(algorithm, a, b, radii, spec.options, config.repetitions);
+          time_query(algorithm, a, b, radii, spec.options, config.repetitions, generated.warm);
   }
   if (answer && needs_exact_depth(*answer, result.algorithms)) {
     answer = solve_certified(a, b, radii, config.oracle_options(true)).answer;
@@ -234,7 +235,8 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
           config.trace == "all" || result.algorithms[i].failure != FailureClass::none;
       if (!wanted || !can_trace(algorithm, radii)) continue;
       TraceRecorder recorder;
-      run_algorithm_traced(algorithm, a, b, radii, config.algorithms[i].options, recorder);
+      run_algorithm_traced(algorithm, a, b, radii, config.algorithms[i].options, recorder,
+                           generated.warm);
       result.traces[i] = std::move(recorder.iterations);
     }
   }

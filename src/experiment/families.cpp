@@ -550,6 +550,7 @@ void take_stored_pair(const FamilySpec& family, std::uint64_t case_id, Generated
   out.b = pair.b;
   out.record.radius_a = pair.radius_a;
   out.record.radius_b = pair.radius_b;
+  out.warm = pair.warm;
   out.record.placement = Placement::as_given;
 }
 

@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -62,6 +63,28 @@ Pose pose_at(const std::vector<double>& poses, std::size_t row) {
   return out;
 }
 
+/// The simplex a query was warm-started from: `size` (at most 4) vertex index pairs into the
+/// world-frame clouds, with the points they name; shorter when an index is out of range.
+std::vector<SimplexVertex> warm_start(std::uint8_t size, const std::int32_t* index_a,
+                                      const std::int32_t* index_b, const std::vector<Vec3>& a,
+                                      const std::vector<Vec3>& b) {
+  std::vector<SimplexVertex> out;
+  for (int k = 0; k < std::min<int>(size, 4); ++k) {
+    const std::int32_t ia = index_a[k], ib = index_b[k];
+    if (ia < 0 || ib < 0 || static_cast<std::size_t>(ia) >= a.size() ||
+        static_cast<std::size_t>(ib) >= b.size())
+      break;
+    SimplexVertex v;
+    v.a = a[ia];
+    v.b = b[ib];
+    v.w = v.a - v.b;
+    v.index_a = ia;
+    v.index_b = ib;
+    out.push_back(v);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<StoredPair> read_scene_stream(const std::filesystem::path& archive) {
@@ -94,6 +117,11 @@ std::vector<StoredPair> read_scene_stream(const std::filesystem::path& archive) 
     }
     return out;
   };
+  const auto warm_size = in.column<std::uint8_t>("queries/warm_size", H5T_NATIVE_UINT8);
+  const auto warm_a = in.column<std::int32_t>("queries/warm_index_a", H5T_NATIVE_INT32);
+  const auto warm_b = in.column<std::int32_t>("queries/warm_index_b", H5T_NATIVE_INT32);
+  if (warm_size.size() != n || warm_a.size() != 4 * n || warm_b.size() != 4 * n)
+    in.fail("queries/warm_* columns of different lengths");
   std::vector<StoredPair> pairs;
   pairs.reserve(n);
   for (std::size_t q = 0; q < n; ++q) {
@@ -102,6 +130,9 @@ std::vector<StoredPair> read_scene_stream(const std::filesystem::path& archive) 
     p.id.append(std::to_string(body_a[q])).append("-").append(std::to_string(body_b[q]));
     p.a = cloud(body_a[q], pose_at(pose_a, q));
     p.b = cloud(body_b[q], pose_at(pose_b, q));
+    p.warm = warm_start(warm_size[q], &warm_a[4 * q], &warm_b[4 * q], p.a, p.b);
+    if (p.warm.size() != warm_size[q])
+      in.fail("query " + std::to_string(q) + "'s warm start names a vertex its bodies lack");
     pairs.push_back(std::move(p));
   }
   return pairs;

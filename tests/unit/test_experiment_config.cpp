@@ -442,8 +442,9 @@ mpr_tolerance = 3.3e-7
                                                            {"precision", "double"}});
 
   const auto johnson = as_map(describe_options(c.algorithms[1]));
-  CHECK(johnson.size() == 10);
+  CHECK(johnson.size() == 11);
   CHECK(johnson.at("recenter") == "true");
+  CHECK(johnson.at("warm_start") == "false");
   CHECK(johnson.at("precision") == "double");
   CHECK(johnson.at("max_iterations") == std::to_string(GjkDistanceDefaults::max_iterations));
   CHECK(johnson.at("convergence") == "relative");

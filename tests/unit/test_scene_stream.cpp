@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gjklab/cli.hpp"
+#include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/scene_stream.hpp"
 #include "gjklab/scene_file.hpp"
@@ -77,6 +78,8 @@ TEST_CASE("stream family: a scene's recorded queries become cases, as the scene 
   // the two world hulls GJK saw, bit for bit, in the order the step queried them.
   cli::SceneSetup s = cli::parse_scene(kScene, "source.toml");
   std::vector<scene::QueryRecord> log;
+  std::vector<int> scene_iterations;  // warm-started, as the scene ran them
+  std::size_t warm_queries = 0;
   std::size_t k = 0;
   for (int frame = 1; frame <= 30; ++frame) {
     std::vector<Pose> before;
@@ -96,24 +99,47 @@ TEST_CASE("stream family: a scene's recorded queries become cases, as the scene 
       const Polytope b = bodies[q.b].shape->polytope.transformed(before[q.b]);
       CHECK(std::vector<Vec3>(a.vertices().begin(), a.vertices().end()) == pairs[k].a);
       CHECK(std::vector<Vec3>(b.vertices().begin(), b.vertices().end()) == pairs[k].b);
+      // The warm start comes with the pair: the same vertex indices, at those vertices.
+      REQUIRE(pairs[k].warm.size() == static_cast<std::size_t>(q.warm_size));
+      for (int v = 0; v < q.warm_size; ++v) {
+        CHECK(pairs[k].warm[v].index_a == q.warm_index_a[v]);
+        CHECK(pairs[k].warm[v].index_b == q.warm_index_b[v]);
+        CHECK(pairs[k].warm[v].a == pairs[k].a[q.warm_index_a[v]]);
+      }
+      warm_queries += q.warm_size > 0;
+      scene_iterations.push_back(q.iterations);
       ++k;
     }
   }
   CHECK(k == pairs.size());
   CHECK(k >= 3);  // the bodies rest on the ground and on each other: pairs in every frame
+  CHECK(warm_queries >= 3);  // the same pairs as the frame before: warm-started
 
-  // An experiment with a stream family runs every recorded query, cold.
+  // An experiment with a stream family runs every recorded query, cold, and with
+  // warm_start = true from the recorded simplex: then in the scene's own iterations.
   const std::string experiment = (dir / "stream.toml").string();
   std::ofstream(experiment) << "name = \"stream\"\nseed = 1\ncases = " << pairs.size()
                             << "\nthreads = 2\n\n[oracle]\nenabled = true\n\n[[family]]\n"
                             << "name = \"scene\"\nshape = \"stream\"\npath = \"source.h5\"\n\n"
                             << "[[algorithm]]\nname = \"gjk-johnson\"\n\n"
-                            << "[[algorithm]]\nname = \"gjk-sv\"\n";
+                            << "[[algorithm]]\nname = \"gjk-sv\"\n\n"
+                            << "[[algorithm]]\nname = \"gjk-johnson\"\nlabel = \"warm\"\n"
+                            << "warm_start = true\n";
   const experiment::ExperimentConfig config = experiment::load_experiment(experiment);
   REQUIRE(config.families.size() == 1);
   CHECK(config.families[0].stored.size() == pairs.size());
   CHECK(run_cli({"run", experiment, "--out", (dir / "stream.h5").string()}, out, err) == 0);
-  CHECK(fs::exists(dir / "stream.h5"));
+  REQUIRE(fs::exists(dir / "stream.h5"));
+  const experiment::Archive run = experiment::read_archive(dir / "stream.h5");
+  REQUIRE(run.results.size() == pairs.size());
+  long cold_total = 0, warm_total = 0;
+  for (std::size_t i = 0; i < run.results.size(); ++i) {
+    INFO("case " << i);
+    CHECK(run.results[i].algorithms[2].iterations == scene_iterations[i]);
+    cold_total += run.results[i].algorithms[0].iterations;
+    warm_total += run.results[i].algorithms[2].iterations;
+  }
+  CHECK(warm_total < cold_total);
 
   // A scene archive without recorded queries is a configuration error naming the cure.
   REQUIRE(run_cli({"simulate", scene, "--out", (dir / "plain.h5").string(), "--frames", "2"}, out,

@@ -16,6 +16,7 @@
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/simplex.hpp"
 #include "gjklab/gjk/swept.hpp"
 #include "gjklab/gjk/trace.hpp"
 #include "gjklab/peers/libccd.hpp"
@@ -41,6 +42,9 @@ struct AlgorithmOptions {
   /// The floating-point type of the GJK queries (gjk-bool, the distance variants, epa): their
   /// inputs are rounded to it and they compute in it; answers are reported in double.
   ScalarPrecision precision = ScalarPrecision::double_float;
+  /// The GJK distance variants: start from the case's recorded simplex (the scene's previous
+  /// frame, `stream` family) instead of cold; cases without one run cold (see run_algorithm).
+  bool warm_start = false;
 
   /// Sets the iteration bound of every iterative algorithm at once (libccd's penetration
   /// queries: also max_depth_iterations; epa: also max_faces = 4 + 2n, so that the face buffer
@@ -98,6 +102,11 @@ struct AlgorithmInfo {
   /// polytopes) and a trace when `trace` is not null. run_algorithm dispatches to it.
   Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
                               const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
+  /// The query started from a simplex given by vertex indices into a's and b's vertex lists
+  /// (gjk_distance_warm_with), with a trace when `trace` is not null; nullptr when the
+  /// algorithm cannot be warm-started. Plain polytopes in double only.
+  Outcome (*run_warm)(const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm,
+                      const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
   /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
   /// archive's description and replay all follow from it.
   OptionSchema options = {};
@@ -113,13 +122,17 @@ bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii);
 
 /// Runs the algorithm on the polytopes (zero radii) or on the shapes they make swept by the
 /// radii. Throws std::invalid_argument naming the algorithm when !handles(algorithm, radii).
+/// With options.warm_start and a non-empty `warm` (the case's recorded simplex), the query
+/// starts from it (AlgorithmInfo::run_warm); it throws std::invalid_argument when the
+/// algorithm cannot, or when the radii or the precision rule a warm start out.
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
-                      const SweptRadii& radii, const AlgorithmOptions& options);
+                      const SweptRadii& radii, const AlgorithmOptions& options,
+                      std::span<const SimplexVertex> warm = {});
 /// The same with a per-iteration trace. Throws std::invalid_argument naming the algorithm when
 /// !can_trace(algorithm, radii).
 Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                              const SweptRadii& radii, const AlgorithmOptions& options,
-                             TraceRecorder& trace);
+                             TraceRecorder& trace, std::span<const SimplexVertex> warm = {});
 
 /// Every registered algorithm, in a fixed order (the default order of outputs).
 std::span<const AlgorithmInfo> algorithms();

@@ -55,6 +55,9 @@ struct StoredPair {
   std::string id;
   std::vector<Vec3> a, b;
   double radius_a = 0, radius_b = 0;  ///< sphere-swept shapes (length units), as stored
+  /// `stream` family: the warm start the scene gave the query (its pair's simplex of the
+  /// previous frame as vertex indices into a and b, points at those vertices); empty: cold.
+  std::vector<SimplexVertex> warm = {};
 };
 
 /// One family of cases: the generator of both shapes and how they are placed.

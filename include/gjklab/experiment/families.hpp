@@ -18,6 +18,9 @@ struct GeneratedCase {
   /// The unit placement axis u of a separated or overlapping case (B was moved along u so that
   /// its extent along u starts intended_gap·size after A's ends); zero for random placement.
   Vec3 direction = Vec3::Zero();
+  /// A recorded warm start for the case's queries (`stream` family; empty otherwise), used by
+  /// algorithms with warm_start = true.
+  std::vector<SimplexVertex> warm;
 };
 
 /// The 32-bit seed of case `case_id`'s GSL generator (gsl_rng_mt19937): the experiment seed is

@@ -59,7 +59,9 @@ using OptionSchema = std::span<const OptionRow>;
 
 // The option schemas of the registered algorithms (src/experiment/algorithm_options.cpp).
 OptionSchema gjk_boolean_option_schema();
-OptionSchema gjk_distance_option_schema();  ///< the GJK distance variants (gjk_distance)
+OptionSchema gjk_distance_option_schema();  ///< gjk_distance (gjk-polyak)
+/// The GJK distance variants with a sub-algorithm: gjk_distance, precision and warm_start.
+OptionSchema gjk_variant_option_schema();
 OptionSchema gjk_nesterov_option_schema();
 OptionSchema epa_option_schema();
 OptionSchema libccd_option_schema();
