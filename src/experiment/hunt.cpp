@@ -15,14 +15,21 @@
 #include "gjklab/experiment/certified.hpp"
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/judging.hpp"
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::experiment {
 
 namespace {
 
-constexpr std::array kObjectives = {HuntObjective::wrong_boolean, HuntObjective::error,
-                                    HuntObjective::iterations, HuntObjective::not_converged};
+constexpr auto kObjectiveNames = std::to_array<EnumName<HuntObjective>>({
+    {HuntObjective::wrong_boolean, "wrong_boolean"},
+    {HuntObjective::error, "error"},
+    {HuntObjective::iterations, "iterations"},
+    {HuntObjective::not_converged, "not_converged"},
+});
+static_assert(in_value_order(kObjectiveNames) &&
+              ends_at(kObjectiveNames, HuntObjective::not_converged));
 
 /// A pair as the search moves it.
 struct Pair {
@@ -316,23 +323,11 @@ std::uint64_t random_baseline_failures(const ExperimentConfig& config, const Jud
 }  // namespace
 
 std::string_view to_string(HuntObjective o) {
-  switch (o) {
-    case HuntObjective::wrong_boolean:
-      return "wrong_boolean";
-    case HuntObjective::error:
-      return "error";
-    case HuntObjective::iterations:
-      return "iterations";
-    case HuntObjective::not_converged:
-      return "not_converged";
-  }
-  return "unknown";
+  return name_of(kObjectiveNames, o);
 }
 
 std::optional<HuntObjective> hunt_objective_from_string(std::string_view name) {
-  for (HuntObjective o : kObjectives)
-    if (to_string(o) == name) return o;
-  return std::nullopt;
+  return value_named(kObjectiveNames, name);
 }
 
 HuntReport hunt(const ExperimentConfig& config, const HuntOptions& options) {

@@ -3,76 +3,95 @@
 #include <array>
 #include <cmath>
 
+#include "gjklab/geometry/enum_names.hpp"
+
 namespace gjklab::experiment {
 
 namespace {
 
-// One name per enumerator, in value order (these enums count from 0 without gaps). to_string
-// reads them, and through it the archive's HDF5 enum types, the summaries and the experiment
-// parser's lists of valid names.
-constexpr std::array<std::string_view, 5> kPlacementNames = {"separated", "overlapping", "random",
-                                                             "touching", "as_given"};
-constexpr std::array<std::string_view, 3> kContactClassNames = {"separated", "touching_band",
-                                                                "intersecting"};
-constexpr std::array<std::string_view, 19> kShapeKindNames = {"sphere_points",
-                                                              "ball_points",
-                                                              "cube_points",
-                                                              "gaussian",
-                                                              "box",
-                                                              "cone",
-                                                              "cylinder",
-                                                              "uv_sphere",
-                                                              "flat_points",
-                                                              "collinear_points",
-                                                              "duplicate_points",
-                                                              "single_point",
-                                                              "sliver",
-                                                              "prism",
-                                                              "pyramid",
-                                                              "from_file",
-                                                              "mesh",
-                                                              "sphere",
-                                                              "capsule"};
-constexpr std::array<std::string_view, 8> kContactTypeNames = {
-    "none",      "face-face",   "edge-edge",     "vertex-face",
-    "edge-face", "vertex-edge", "vertex-vertex", "parallel-edges"};
-constexpr std::array<std::string_view, 9> kFailureClassNames = {
-    "none",    "touching_band", "step_limit",    "no_progress",   "degenerate_simplex",
-    "cycling", "non_finite",    "wrong_boolean", "distance_error"};
+// One name table per enum (geometry/enum_names.hpp). to_string reads them, and through it the
+// archive's HDF5 enum types, the summaries and the experiment parser's lists of valid names.
+constexpr auto kPlacementNames = std::to_array<EnumName<Placement>>({
+    {Placement::separated, "separated"},
+    {Placement::overlapping, "overlapping"},
+    {Placement::random, "random"},
+    {Placement::touching, "touching"},
+    {Placement::as_given, "as_given"},
+});
+constexpr auto kContactClassNames = std::to_array<EnumName<ContactClass>>({
+    {ContactClass::separated, "separated"},
+    {ContactClass::touching_band, "touching_band"},
+    {ContactClass::intersecting, "intersecting"},
+});
+constexpr auto kShapeKindNames = std::to_array<EnumName<ShapeKind>>({
+    {ShapeKind::sphere_points, "sphere_points"},
+    {ShapeKind::ball_points, "ball_points"},
+    {ShapeKind::cube_points, "cube_points"},
+    {ShapeKind::gaussian, "gaussian"},
+    {ShapeKind::box, "box"},
+    {ShapeKind::cone, "cone"},
+    {ShapeKind::cylinder, "cylinder"},
+    {ShapeKind::uv_sphere, "uv_sphere"},
+    {ShapeKind::flat_points, "flat_points"},
+    {ShapeKind::collinear_points, "collinear_points"},
+    {ShapeKind::duplicate_points, "duplicate_points"},
+    {ShapeKind::single_point, "single_point"},
+    {ShapeKind::sliver, "sliver"},
+    {ShapeKind::prism, "prism"},
+    {ShapeKind::pyramid, "pyramid"},
+    {ShapeKind::from_file, "from_file"},
+    {ShapeKind::mesh, "mesh"},
+    {ShapeKind::sphere, "sphere"},
+    {ShapeKind::capsule, "capsule"},
+});
+constexpr auto kContactTypeNames = std::to_array<EnumName<ContactType>>({
+    {ContactType::none, "none"},
+    {ContactType::face_face, "face-face"},
+    {ContactType::edge_edge, "edge-edge"},
+    {ContactType::vertex_face, "vertex-face"},
+    {ContactType::edge_face, "edge-face"},
+    {ContactType::vertex_edge, "vertex-edge"},
+    {ContactType::vertex_vertex, "vertex-vertex"},
+    {ContactType::parallel_edges, "parallel-edges"},
+});
+constexpr auto kFailureClassNames = std::to_array<EnumName<FailureClass>>({
+    {FailureClass::none, "none"},
+    {FailureClass::touching_band, "touching_band"},
+    {FailureClass::step_limit, "step_limit"},
+    {FailureClass::no_progress, "no_progress"},
+    {FailureClass::degenerate_simplex, "degenerate_simplex"},
+    {FailureClass::cycling, "cycling"},
+    {FailureClass::non_finite, "non_finite"},
+    {FailureClass::wrong_boolean, "wrong_boolean"},
+    {FailureClass::distance_error, "distance_error"},
+});
 
-// Each table ends at the enum's last enumerator.
-static_assert(kPlacementNames.size() == static_cast<std::size_t>(Placement::as_given) + 1);
-static_assert(kContactClassNames.size() ==
-              static_cast<std::size_t>(ContactClass::intersecting) + 1);
-static_assert(kShapeKindNames.size() == static_cast<std::size_t>(ShapeKind::capsule) + 1);
-static_assert(kContactTypeNames.size() ==
-              static_cast<std::size_t>(ContactType::parallel_edges) + 1);
-static_assert(kFailureClassNames.size() ==
-              static_cast<std::size_t>(FailureClass::distance_error) + 1);
-
-/// The value's name, or "unknown" for a value past the table (a corrupt or foreign byte).
-template <class E, std::size_t N>
-std::string_view name_in(const std::array<std::string_view, N>& names, E value) {
-  const auto i = static_cast<std::size_t>(value);
-  return i < N ? names[i] : "unknown";
-}
+// Each table names every enumerator, in value order.
+static_assert(in_value_order(kPlacementNames) && ends_at(kPlacementNames, Placement::as_given));
+static_assert(in_value_order(kContactClassNames) &&
+              ends_at(kContactClassNames, ContactClass::intersecting));
+static_assert(in_value_order(kShapeKindNames) && ends_at(kShapeKindNames, ShapeKind::capsule));
+static_assert(in_value_order(kContactTypeNames) &&
+              ends_at(kContactTypeNames, ContactType::parallel_edges));
+static_assert(in_value_order(kFailureClassNames) &&
+              ends_at(kFailureClassNames, FailureClass::distance_error));
 
 }  // namespace
 
 std::string_view to_string(Placement p) {
-  return name_in(kPlacementNames, p);
+  return name_of(kPlacementNames, p);
 }
 std::string_view to_string(ContactClass c) {
-  return name_in(kContactClassNames, c);
+  return name_of(kContactClassNames, c);
 }
 std::string_view to_string(ShapeKind s) {
-  return name_in(kShapeKindNames, s);
+  return name_of(kShapeKindNames, s);
 }
 std::string_view to_string(ContactType c) {
-  return name_in(kContactTypeNames, c);
+  return name_of(kContactTypeNames, c);
 }
 std::string_view to_string(FailureClass f) {
-  return name_in(kFailureClassNames, f);
+  return name_of(kFailureClassNames, f);
 }
 
 FailureClass classify_failure(const AlgorithmRecord& r, const ExactRecord* exact, double band) {

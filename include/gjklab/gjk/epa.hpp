@@ -52,6 +52,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/epa_polytope.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -106,28 +107,21 @@ enum class EpaStop : std::uint8_t {
   non_finite,
 };
 
-constexpr std::string_view to_string(EpaStop s) {
-  switch (s) {
-    case EpaStop::converged:
-      return "converged";
-    case EpaStop::repeated_support:
-      return "repeated_support";
-    case EpaStop::flat_difference:
-      return "flat_difference";
-    case EpaStop::separated:
-      return "separated";
-    case EpaStop::gjk_failed:
-      return "gjk_failed";
-    case EpaStop::degenerate_polytope:
-      return "degenerate_polytope";
-    case EpaStop::out_of_faces:
-      return "out_of_faces";
-    case EpaStop::step_limit:
-      return "step_limit";
-    case EpaStop::non_finite:
-      return "non_finite";
-  }
-  return "unknown";
+inline constexpr auto kEpaStopNames = std::to_array<EnumName<EpaStop>>({
+    {EpaStop::converged, "converged"},
+    {EpaStop::repeated_support, "repeated_support"},
+    {EpaStop::flat_difference, "flat_difference"},
+    {EpaStop::separated, "separated"},
+    {EpaStop::gjk_failed, "gjk_failed"},
+    {EpaStop::degenerate_polytope, "degenerate_polytope"},
+    {EpaStop::out_of_faces, "out_of_faces"},
+    {EpaStop::step_limit, "step_limit"},
+    {EpaStop::non_finite, "non_finite"},
+});
+static_assert(in_value_order(kEpaStopNames) && ends_at(kEpaStopNames, EpaStop::non_finite));
+
+constexpr std::string_view to_string(EpaStop v) {
+  return name_of(kEpaStopNames, v);
 }
 
 /// The Termination an EPA stop reports when EPA ran (separated and gjk_failed report GJK's).

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab {
@@ -22,23 +23,20 @@ enum class ScalarPrecision : std::uint8_t {
   long_double,   ///< "long double": x87 80-bit extended precision on x86-64
 };
 
-constexpr std::string_view to_string(ScalarPrecision p) {
-  switch (p) {
-    case ScalarPrecision::single_float:
-      return "float";
-    case ScalarPrecision::double_float:
-      return "double";
-    case ScalarPrecision::long_double:
-      return "long double";
-  }
-  return "unknown";
+inline constexpr auto kScalarPrecisionNames = std::to_array<EnumName<ScalarPrecision>>({
+    {ScalarPrecision::single_float, "float"},
+    {ScalarPrecision::double_float, "double"},
+    {ScalarPrecision::long_double, "long double"},
+});
+static_assert(in_value_order(kScalarPrecisionNames) &&
+              ends_at(kScalarPrecisionNames, ScalarPrecision::long_double));
+
+constexpr std::string_view to_string(ScalarPrecision v) {
+  return name_of(kScalarPrecisionNames, v);
 }
 
 inline std::optional<ScalarPrecision> precision_from_string(std::string_view name) {
-  for (ScalarPrecision p :
-       {ScalarPrecision::single_float, ScalarPrecision::double_float, ScalarPrecision::long_double})
-    if (to_string(p) == name) return p;
-  return std::nullopt;
+  return value_named(kScalarPrecisionNames, name);
 }
 
 /// How `gjk-bool` chooses its first search direction and first simplex point.
@@ -63,23 +61,20 @@ enum class GjkBooleanStart : std::uint8_t {
   centre_point,
 };
 
-constexpr std::string_view to_string(GjkBooleanStart s) {
-  switch (s) {
-    case GjkBooleanStart::fixed_direction:
-      return "fixed_direction";
-    case GjkBooleanStart::centre_direction:
-      return "centre_direction";
-    case GjkBooleanStart::centre_point:
-      return "centre_point";
-  }
-  return "unknown";
+inline constexpr auto kGjkBooleanStartNames = std::to_array<EnumName<GjkBooleanStart>>({
+    {GjkBooleanStart::fixed_direction, "fixed_direction"},
+    {GjkBooleanStart::centre_direction, "centre_direction"},
+    {GjkBooleanStart::centre_point, "centre_point"},
+});
+static_assert(in_value_order(kGjkBooleanStartNames) &&
+              ends_at(kGjkBooleanStartNames, GjkBooleanStart::centre_point));
+
+constexpr std::string_view to_string(GjkBooleanStart v) {
+  return name_of(kGjkBooleanStartNames, v);
 }
 
 inline std::optional<GjkBooleanStart> boolean_start_from_string(std::string_view name) {
-  for (GjkBooleanStart s : {GjkBooleanStart::fixed_direction, GjkBooleanStart::centre_direction,
-                            GjkBooleanStart::centre_point})
-    if (to_string(s) == name) return s;
-  return std::nullopt;
+  return value_named(kGjkBooleanStartNames, name);
 }
 
 struct GjkBooleanDefaults {
@@ -126,23 +121,20 @@ enum class GjkConvergence : std::uint8_t {
   duality_gap,
 };
 
-constexpr std::string_view to_string(GjkConvergence c) {
-  switch (c) {
-    case GjkConvergence::relative:
-      return "relative";
-    case GjkConvergence::absolute:
-      return "absolute";
-    case GjkConvergence::duality_gap:
-      return "duality_gap";
-  }
-  return "unknown";
+inline constexpr auto kGjkConvergenceNames = std::to_array<EnumName<GjkConvergence>>({
+    {GjkConvergence::relative, "relative"},
+    {GjkConvergence::absolute, "absolute"},
+    {GjkConvergence::duality_gap, "duality_gap"},
+});
+static_assert(in_value_order(kGjkConvergenceNames) &&
+              ends_at(kGjkConvergenceNames, GjkConvergence::duality_gap));
+
+constexpr std::string_view to_string(GjkConvergence v) {
+  return name_of(kGjkConvergenceNames, v);
 }
 
 inline std::optional<GjkConvergence> convergence_from_string(std::string_view name) {
-  for (GjkConvergence c :
-       {GjkConvergence::relative, GjkConvergence::absolute, GjkConvergence::duality_gap})
-    if (to_string(c) == name) return c;
-  return std::nullopt;
+  return value_named(kGjkConvergenceNames, name);
 }
 
 /// How a GJK distance query picks its first support point when it starts cold.
@@ -156,20 +148,19 @@ enum class GjkDistanceStart : std::uint8_t {
   centre_direction,
 };
 
-constexpr std::string_view to_string(GjkDistanceStart s) {
-  switch (s) {
-    case GjkDistanceStart::fixed_direction:
-      return "fixed_direction";
-    case GjkDistanceStart::centre_direction:
-      return "centre_direction";
-  }
-  return "unknown";
+inline constexpr auto kGjkDistanceStartNames = std::to_array<EnumName<GjkDistanceStart>>({
+    {GjkDistanceStart::fixed_direction, "fixed_direction"},
+    {GjkDistanceStart::centre_direction, "centre_direction"},
+});
+static_assert(in_value_order(kGjkDistanceStartNames) &&
+              ends_at(kGjkDistanceStartNames, GjkDistanceStart::centre_direction));
+
+constexpr std::string_view to_string(GjkDistanceStart v) {
+  return name_of(kGjkDistanceStartNames, v);
 }
 
 inline std::optional<GjkDistanceStart> distance_start_from_string(std::string_view name) {
-  for (GjkDistanceStart s : {GjkDistanceStart::fixed_direction, GjkDistanceStart::centre_direction})
-    if (to_string(s) == name) return s;
-  return std::nullopt;
+  return value_named(kGjkDistanceStartNames, name);
 }
 
 struct GjkDistanceDefaults {

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string_view>
 
+#include "gjklab/geometry/enum_names.hpp"
+
 namespace gjklab {
 
 enum class Termination : std::uint8_t {
@@ -18,35 +20,26 @@ enum class Termination : std::uint8_t {
   invalid_input,       ///< the input was rejected before any iteration (empty, non-finite)
 };
 
-inline constexpr std::array<Termination, 7> kAllTerminations = {
-    Termination::converged,          Termination::step_limit, Termination::no_progress,
-    Termination::degenerate_simplex, Termination::cycling,    Termination::numerical_failure,
-    Termination::invalid_input};
+inline constexpr auto kTerminationNames = std::to_array<EnumName<Termination>>({
+    {Termination::converged, "converged"},
+    {Termination::step_limit, "step_limit"},
+    {Termination::no_progress, "no_progress"},
+    {Termination::degenerate_simplex, "degenerate_simplex"},
+    {Termination::cycling, "cycling"},
+    {Termination::numerical_failure, "numerical_failure"},
+    {Termination::invalid_input, "invalid_input"},
+});
+static_assert(in_value_order(kTerminationNames) &&
+              ends_at(kTerminationNames, Termination::invalid_input));
+
+inline constexpr auto kAllTerminations = values_of(kTerminationNames);
 
 constexpr std::string_view to_string(Termination t) {
-  switch (t) {
-    case Termination::converged:
-      return "converged";
-    case Termination::step_limit:
-      return "step_limit";
-    case Termination::no_progress:
-      return "no_progress";
-    case Termination::degenerate_simplex:
-      return "degenerate_simplex";
-    case Termination::cycling:
-      return "cycling";
-    case Termination::numerical_failure:
-      return "numerical_failure";
-    case Termination::invalid_input:
-      return "invalid_input";
-  }
-  return "unknown";
+  return name_of(kTerminationNames, t);
 }
 
 inline std::optional<Termination> termination_from_string(std::string_view name) {
-  for (Termination t : kAllTerminations)
-    if (to_string(t) == name) return t;
-  return std::nullopt;
+  return value_named(kTerminationNames, name);
 }
 
 }  // namespace gjklab

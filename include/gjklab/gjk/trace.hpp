@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/gjk/simplex.hpp"
 
 namespace gjklab {
@@ -33,34 +34,24 @@ enum class GjkStep : std::uint8_t {
   cycled,
 };
 
-constexpr std::string_view to_string(GjkStep s) {
-  switch (s) {
-    case GjkStep::continued:
-      return "continued";
-    case GjkStep::gap_converged:
-      return "gap_converged";
-    case GjkStep::repeated_support:
-      return "repeated_support";
-    case GjkStep::contact:
-      return "contact";
-    case GjkStep::separated:
-      return "separated";
-    case GjkStep::degenerate:
-      return "degenerate";
-    case GjkStep::no_progress:
-      return "no_progress";
-    case GjkStep::non_finite:
-      return "non_finite";
-    case GjkStep::step_limit:
-      return "step_limit";
-    case GjkStep::momentum_restart:
-      return "momentum_restart";
-    case GjkStep::stalled:
-      return "stalled";
-    case GjkStep::cycled:
-      return "cycled";
-  }
-  return "unknown";
+inline constexpr auto kGjkStepNames = std::to_array<EnumName<GjkStep>>({
+    {GjkStep::continued, "continued"},
+    {GjkStep::gap_converged, "gap_converged"},
+    {GjkStep::repeated_support, "repeated_support"},
+    {GjkStep::contact, "contact"},
+    {GjkStep::separated, "separated"},
+    {GjkStep::degenerate, "degenerate"},
+    {GjkStep::no_progress, "no_progress"},
+    {GjkStep::non_finite, "non_finite"},
+    {GjkStep::step_limit, "step_limit"},
+    {GjkStep::momentum_restart, "momentum_restart"},
+    {GjkStep::stalled, "stalled"},
+    {GjkStep::cycled, "cycled"},
+});
+static_assert(in_value_order(kGjkStepNames) && ends_at(kGjkStepNames, GjkStep::cycled));
+
+constexpr std::string_view to_string(GjkStep v) {
+  return name_of(kGjkStepNames, v);
 }
 
 /// One iteration of a GJK query.
