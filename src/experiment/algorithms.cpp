@@ -272,13 +272,14 @@ constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_vi
 }
 
 /// The query of gjk_variant_entry started from a recorded simplex (vertex indices re-read on
-/// the shapes, see gjk_distance_warm_with).
+/// the shapes, see gjk_distance_warm_with); swept shapes: on the cores, shifted by the radii.
 template <class Sub>
-Outcome warm_distance_with(const Polytope& a, const Polytope& b,
+Outcome warm_distance_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
                            std::span<const SimplexVertex> warm, const AlgorithmOptions& o,
                            TraceRecorder* trace) {
-  return from_distance(trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
-                             : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance));
+  const DistanceResult d = trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
+                                 : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance);
+  return from_distance(r.any() ? swept_distance(d, r) : d);
 }
 
 /// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance (and
@@ -710,12 +711,12 @@ namespace {
 
 /// Whether the query starts from the case's recorded simplex; throws std::invalid_argument
 /// naming the algorithm when warm_start asks for what it cannot do.
-bool warm_started(const AlgorithmInfo& algorithm, const SweptRadii& radii,
-                  const AlgorithmOptions& options, std::span<const SimplexVertex> warm) {
+bool warm_started(const AlgorithmInfo& algorithm, const AlgorithmOptions& options,
+                  std::span<const SimplexVertex> warm) {
   if (!options.warm_start || warm.empty()) return false;
-  if (!algorithm.run_warm || radii.any() || options.precision != ScalarPrecision::double_float)
+  if (!algorithm.run_warm || options.precision != ScalarPrecision::double_float)
     throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
-                                "' cannot be warm-started here (plain polytopes in double only)");
+                                "' cannot be warm-started here (in double only)");
   return true;
 }
 
@@ -724,8 +725,8 @@ bool warm_started(const AlgorithmInfo& algorithm, const SweptRadii& radii,
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                       const SweptRadii& radii, const AlgorithmOptions& options,
                       std::span<const SimplexVertex> warm) {
-  if (warm_started(algorithm, radii, options, warm))
-    return algorithm.run_warm(a, b, warm, options, nullptr);
+  if (warm_started(algorithm, options, warm))
+    return algorithm.run_warm(a, b, radii, warm, options, nullptr);
   if (in_other_precision(algorithm, options))
     return algorithm.run_at_precision(a, b, radii, options, nullptr);
   if (!radii.any()) return algorithm.run(a, b, options);
@@ -739,8 +740,8 @@ Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, 
   if (!can_trace(algorithm, radii))
     throw std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' cannot be traced" +
                                 (radii.any() ? " on sphere-swept shapes" : ""));
-  if (warm_started(algorithm, radii, options, warm))
-    return algorithm.run_warm(a, b, warm, options, &trace);
+  if (warm_started(algorithm, options, warm))
+    return algorithm.run_warm(a, b, radii, warm, options, &trace);
   if (in_other_precision(algorithm, options))
     return algorithm.run_at_precision(a, b, radii, options, &trace);
   if (!radii.any()) return algorithm.run_traced(a, b, options, trace);

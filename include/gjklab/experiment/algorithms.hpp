@@ -103,10 +103,11 @@ struct AlgorithmInfo {
   Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
                               const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
   /// The query started from a simplex given by vertex indices into a's and b's vertex lists
-  /// (gjk_distance_warm_with), with a trace when `trace` is not null; nullptr when the
-  /// algorithm cannot be warm-started. Plain polytopes in double only.
-  Outcome (*run_warm)(const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm,
-                      const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
+  /// (gjk_distance_warm_with; on the cores of swept shapes), with a trace when `trace` is not
+  /// null; nullptr when the algorithm cannot be warm-started. In double only.
+  Outcome (*run_warm)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                      std::span<const SimplexVertex> warm, const AlgorithmOptions& options,
+                      TraceRecorder* trace) = nullptr;
   /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
   /// archive's description and replay all follow from it.
   OptionSchema options = {};
@@ -124,7 +125,7 @@ bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii);
 /// radii. Throws std::invalid_argument naming the algorithm when !handles(algorithm, radii).
 /// With options.warm_start and a non-empty `warm` (the case's recorded simplex), the query
 /// starts from it (AlgorithmInfo::run_warm); it throws std::invalid_argument when the
-/// algorithm cannot, or when the radii or the precision rule a warm start out.
+/// algorithm cannot, or in another precision than double.
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                       const SweptRadii& radii, const AlgorithmOptions& options,
                       std::span<const SimplexVertex> warm = {});
