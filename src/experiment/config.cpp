@@ -57,31 +57,11 @@ constexpr double kMaxScale = 1e100;
 
 constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random",
                                                 "touching"};
-/// Generated shapes a family can name directly (contact, file, mesh and real_object are read
-/// apart; family_shapes() lists them all).
-constexpr ShapeKind kShapeKinds[] = {
-    ShapeKind::sphere_points,
-    ShapeKind::ball_points,
-    ShapeKind::cube_points,
-    ShapeKind::gaussian,
-    ShapeKind::box,
-    ShapeKind::cone,
-    ShapeKind::cylinder,
-    ShapeKind::uv_sphere,
-    ShapeKind::flat_points,
-    ShapeKind::collinear_points,
-    ShapeKind::duplicate_points,
-    ShapeKind::single_point,
-    ShapeKind::sliver,
-    ShapeKind::sphere,
-    ShapeKind::capsule,
-};
 constexpr ContactType kContactTypes[] = {
     ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
     ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
     ContactType::parallel_edges,
 };
-constexpr std::string_view kRotations[] = {"true", "false", "\"random\"", "\"none\"", "\"axes\""};
 
 template <typename Range>
 std::string join(const Range& items) {
@@ -382,37 +362,17 @@ class Section {
   int header_line_;
 };
 
-std::optional<ShapeKind> shape_from_name(std::string_view name) {
-  for (ShapeKind k : kShapeKinds)
-    if (to_string(k) == name) return k;
-  return std::nullopt;
-}
-
 ShapeKind read_shape(const Section& s, std::string_view key) {
   const std::string name = *s.string(key);
-  if (const auto kind = shape_from_name(name)) return *kind;
+  if (const ShapeGenerator* generator = find_shape_generator(name)) return generator->kind;
   s.fail(*s.find(key), key, "unknown shape '" + name + "'; valid: " + shape_names());
 }
 
-/// The vertex count a shape gets when the family does not say.
+/// The vertex count a shape gets when the family does not say (the generator's default; 32
+/// for shapes read from files, whose clouds are read whole).
 Interval default_vertices(ShapeKind kind) {
-  double n = 32;
-  switch (kind) {
-    case ShapeKind::box:
-      n = 8;
-      break;
-    case ShapeKind::cone:
-      n = 33;
-      break;
-    case ShapeKind::cylinder:
-      n = 64;
-      break;
-    case ShapeKind::uv_sphere:
-      n = 482;
-      break;
-    default:
-      break;
-  }
+  const ShapeGenerator* generator = find_shape_generator(kind);
+  const double n = generator ? generator->default_vertices : 32;
   return {n, n};
 }
 

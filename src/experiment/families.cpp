@@ -381,67 +381,79 @@ std::vector<Vec3> duplicate_cloud(int n, gsl_rng* r) {
 
 }  // namespace
 
+namespace {
+
+gsl_rng* as_rng(void* r) {
+  return static_cast<gsl_rng*>(r);
+}
+
+/// The family registry's generated shapes: one row each (the ShapeKind, what it makes, its
+/// vertex count when the family gives none, its generator). A new generated shape is its
+/// generator and one row here; family_shapes, generate_shape and the experiment parser follow.
+/// Rows a family cannot name (prism, pyramid: parts of the contact families) come last.
+constexpr ShapeGenerator kShapeGenerators[] = {
+    {ShapeKind::sphere_points, "points uniform on the unit sphere", 32,
+     [](int n, void* r, double) { return sphere_cloud(n, as_rng(r)); }},
+    {ShapeKind::ball_points, "points uniform in the unit ball", 32,
+     [](int n, void* r, double) { return ball_cloud(n, as_rng(r)); }},
+    {ShapeKind::cube_points, "points uniform in the cube [-1, 1]^3", 32,
+     [](int n, void* r, double) { return cube_cloud(n, as_rng(r)); }},
+    {ShapeKind::gaussian, "standard normal cloud", 32,
+     [](int n, void* r, double) { return gaussian_cloud(n, as_rng(r)); }},
+    {ShapeKind::box, "demo box (8 vertices)", 8,
+     [](int, void*, double) { return points_of(shapes::box()); }},
+    {ShapeKind::cone, "demo cone (apex and a ring)", 33,
+     [](int n, void*, double) { return points_of(shapes::cone(std::max(n, 4))); }},
+    {ShapeKind::cylinder, "demo cylinder (two rings)", 64,
+     [](int n, void*, double) { return points_of(shapes::cylinder(std::max(n + (n & 1), 6))); }},
+    {ShapeKind::uv_sphere, "demo UV sphere", 482,
+     [](int n, void*, double) { return points_of(shapes::uv_sphere(std::max(n, 6))); }},
+    {ShapeKind::flat_points,
+     "points uniform in the unit disk of the plane z = 0 (exactly coplanar)", 32,
+     [](int n, void* r, double) { return disk_cloud(n, as_rng(r)); }},
+    {ShapeKind::collinear_points, "points uniform on the segment [-1, 1] of the x axis", 32,
+     [](int n, void* r, double) { return segment_cloud(n, as_rng(r)); }},
+    {ShapeKind::duplicate_points, "n points drawn from three distinct points on the unit sphere",
+     32, [](int n, void* r, double) { return duplicate_cloud(n, as_rng(r)); }},
+    {ShapeKind::single_point, "one point at the origin", 32,
+     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+    {ShapeKind::sliver, "box of extents 1 x 1 x 1/aspect", 32,
+     [](int, void*, double aspect) { return points_of(shapes::box(Vec3(1, 1, 1 / aspect))); }},
+    {ShapeKind::sphere, "sphere-swept point (a ball of the family's radius)", 32,
+     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+    {ShapeKind::capsule, "sphere-swept segment (+-1, 0, 0)", 32,
+     [](int, void*, double) {
+       return std::vector<Vec3>{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
+     }},
+    {ShapeKind::prism, "", 32, [](int, void*, double) { return roof_below(); }, false},
+    {ShapeKind::pyramid, "", 32, [](int, void*, double) { return pyramid(0, 0, -1); }, false},
+};
+
+}  // namespace
+
+std::span<const ShapeGenerator> shape_generators() {
+  return kShapeGenerators;
+}
+
+const ShapeGenerator* find_shape_generator(ShapeKind kind) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.kind == kind) return &g;
+  return nullptr;
+}
+
+const ShapeGenerator* find_shape_generator(std::string_view name) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.nameable && to_string(g.kind) == name) return &g;
+  return nullptr;
+}
+
 std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, double aspect) {
   if (n < 1) throw std::invalid_argument("generate_shape: vertex count must be at least 1");
-  auto* r = static_cast<gsl_rng*>(gsl_rng_handle);
-  std::vector<Vec3> cloud;
-  switch (kind) {
-    case ShapeKind::sphere_points:
-      cloud = sphere_cloud(n, r);
-      break;
-    case ShapeKind::ball_points:
-      cloud = ball_cloud(n, r);
-      break;
-    case ShapeKind::cube_points:
-      cloud = cube_cloud(n, r);
-      break;
-    case ShapeKind::gaussian:
-      cloud = gaussian_cloud(n, r);
-      break;
-    case ShapeKind::box:
-      cloud = points_of(shapes::box());
-      break;
-    case ShapeKind::cone:
-      cloud = points_of(shapes::cone(std::max(n, 4)));
-      break;
-    case ShapeKind::cylinder:
-      cloud = points_of(shapes::cylinder(std::max(n + (n & 1), 6)));
-      break;
-    case ShapeKind::uv_sphere:
-      cloud = points_of(shapes::uv_sphere(std::max(n, 6)));
-      break;
-    case ShapeKind::flat_points:
-      cloud = disk_cloud(n, r);
-      break;
-    case ShapeKind::collinear_points:
-      cloud = segment_cloud(n, r);
-      break;
-    case ShapeKind::duplicate_points:
-      cloud = duplicate_cloud(n, r);
-      break;
-    case ShapeKind::single_point:
-    case ShapeKind::sphere:
-      cloud.emplace_back(0.0, 0.0, 0.0);
-      break;
-    case ShapeKind::capsule:
-      cloud = {Vec3(-1, 0, 0), Vec3(1, 0, 0)};
-      break;
-    case ShapeKind::sliver:
-      cloud = points_of(shapes::box(Vec3(1, 1, 1 / aspect)));
-      break;
-    case ShapeKind::prism:
-      cloud = roof_below();
-      break;
-    case ShapeKind::pyramid:
-      cloud = pyramid(0, 0, -1);
-      break;
-    case ShapeKind::from_file:
-    case ShapeKind::mesh:
-      throw std::invalid_argument(
-          "generate_shape: this shape's clouds come from the family's files");
-  }
-  if (cloud.empty()) throw std::invalid_argument("generate_shape: unknown shape kind");
-  return cloud;
+  if (kind == ShapeKind::from_file || kind == ShapeKind::mesh)
+    throw std::invalid_argument("generate_shape: this shape's clouds come from the family's files");
+  const ShapeGenerator* generator = find_shape_generator(kind);
+  if (!generator) throw std::invalid_argument("generate_shape: unknown shape kind");
+  return generator->generate(n, gsl_rng_handle, aspect);
 }
 
 namespace {
@@ -580,22 +592,8 @@ void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
 }  // namespace
 
 std::span<const FamilyShapeInfo> family_shapes() {
-  static constexpr FamilyShapeInfo kShapes[] = {
-      {"sphere_points", "points uniform on the unit sphere"},
-      {"ball_points", "points uniform in the unit ball"},
-      {"cube_points", "points uniform in the cube [-1, 1]^3"},
-      {"gaussian", "standard normal cloud"},
-      {"box", "demo box (8 vertices)"},
-      {"cone", "demo cone (apex and a ring)"},
-      {"cylinder", "demo cylinder (two rings)"},
-      {"uv_sphere", "demo UV sphere"},
-      {"flat_points", "points uniform in the unit disk of the plane z = 0 (exactly coplanar)"},
-      {"collinear_points", "points uniform on the segment [-1, 1] of the x axis"},
-      {"duplicate_points", "n points drawn from three distinct points on the unit sphere"},
-      {"single_point", "one point at the origin"},
-      {"sliver", "box of extents 1 x 1 x 1/aspect"},
-      {"sphere", "sphere-swept point (a ball of the family's radius)"},
-      {"capsule", "sphere-swept segment (+-1, 0, 0)"},
+  // The pair sources: families whose pairs are built or read whole, not drawn shape by shape.
+  static constexpr FamilyShapeInfo kPairSources[] = {
       {"contact",
        "pairs built in exact contact (face-face, edge-edge, ...), then moved by epsilon"},
       {"file", "the pairs of a JSON-lines cases file (path)"},
@@ -605,7 +603,14 @@ std::span<const FamilyShapeInfo> family_shapes() {
        "convex hulls of the real meshes of Debian's libcgal-demo (objects: names or \"all\"), "
        "at unit size"},
   };
-  return kShapes;
+  static const std::vector<FamilyShapeInfo> shapes = [] {
+    std::vector<FamilyShapeInfo> out;
+    for (const ShapeGenerator& g : kShapeGenerators)
+      if (g.nameable) out.push_back({to_string(g.kind), g.description});
+    out.insert(out.end(), std::begin(kPairSources), std::end(kPairSources));
+    return out;
+  }();
+  return shapes;
 }
 
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {

@@ -401,3 +401,34 @@ TEST_CASE("generated clouds are valid and records complete", "[unit][families]")
   }
   CHECK_THROWS_AS(generate_case(ExperimentConfig{}, 0), std::invalid_argument);
 }
+
+TEST_CASE("family registry: every generated shape is one row, and the parser follows it",
+          "[unit][families]") {
+  std::set<ShapeKind> kinds;
+  for (const ShapeGenerator& g : shape_generators()) {
+    INFO(to_string(g.kind));
+    CHECK(kinds.insert(g.kind).second);  // one row per kind
+    CHECK(find_shape_generator(g.kind) == &g);
+    const auto rng = make_rng(7);
+    CHECK_FALSE(generate_shape(g.kind, g.default_vertices, rng.get()).empty());
+    // A family may name exactly the nameable rows, and gets the row's default vertex count.
+    const auto listed =
+        std::find_if(family_shapes().begin(), family_shapes().end(),
+                     [&](const FamilyShapeInfo& s) { return s.name == to_string(g.kind); });
+    CHECK((listed != family_shapes().end()) == g.nameable);
+    CHECK((find_shape_generator(to_string(g.kind)) == &g) == g.nameable);
+    if (!g.nameable) continue;
+    const ExperimentConfig config = parse_experiment(
+        "name = \"t\"\nseed = 1\ncases = 1\n[[family]]\nshape = \"" +
+            std::string(to_string(g.kind)) + "\"\n[[algorithm]]\nname = \"gjk-johnson\"\n",
+        "registry.toml");
+    CHECK(config.families[0].vertices_a.lo == g.default_vertices);
+    CHECK(config.families[0].vertices_b.hi == g.default_vertices);
+  }
+  // Only the shapes read from files have no generator.
+  for (ShapeKind k : {ShapeKind::from_file, ShapeKind::mesh}) {
+    CHECK(find_shape_generator(k) == nullptr);
+    CHECK(kinds.count(k) == 0);
+  }
+  CHECK(kinds.size() + 2 == static_cast<std::size_t>(ShapeKind::capsule) + 1);
+}

@@ -43,6 +43,27 @@ struct FamilyShapeInfo {
 /// file, mesh, real_object); the experiment parser accepts exactly these.
 std::span<const FamilyShapeInfo> family_shapes();
 
+/// A generated shape of the family registry: a family's `shape = "NAME"` (NAME is
+/// to_string(kind)) draws its clouds with `generate`. The rows are a table in families.cpp: a
+/// new generated shape is its generator and one row there (with its ShapeKind and that kind's
+/// name, which the archive stores).
+struct ShapeGenerator {
+  ShapeKind kind;
+  std::string_view description;
+  int default_vertices;  ///< the vertex count when the family gives none
+  /// The points before rotation, scale and placement, for n >= 1 requested vertices (see
+  /// generate_shape; `gsl_rng` is a gsl_rng*).
+  std::vector<Vec3> (*generate)(int n, void* gsl_rng, double aspect);
+  bool nameable = true;  ///< false: a part of other families only (prism, pyramid)
+};
+
+/// Every generated shape, in the order family_shapes lists them.
+std::span<const ShapeGenerator> shape_generators();
+/// The generator of this kind, or nullptr (from_file, mesh).
+const ShapeGenerator* find_shape_generator(ShapeKind kind);
+/// The generator a family may name so, or nullptr.
+const ShapeGenerator* find_shape_generator(std::string_view name);
+
 /// Points of one generator (before rotation, scale and placement); `n` (>= 1) is the requested
 /// vertex count. The point generators give exactly n points; the demo shapes adjust it: box has
 /// 8 vertices whatever n, cone(max(n, 4)), cylinder(n rounded up to even, at least 6) and
