@@ -49,8 +49,9 @@ void SceneAudit::after_step(const scene::World& w, std::int64_t frame, AuditRows
   options.depth = depth_;
   options.hull_vertices = false;  // not asked for: an exact hull of each cloud per pair
   for (const auto& [i, j] : pairs_) {
-    const experiment::CertifiedAnswer c =
-        experiment::solve_certified(*hulls_[i], *hulls_[j], SweptRadii{}, options);
+    const experiment::CertifiedAnswer c = experiment::solve_certified(
+        *hulls_[i], *hulls_[j],
+        SweptRadii{w.bodies()[i].shape->swept_radius, w.bodies()[j].shape->swept_radius}, options);
     rows.frame.push_back(frame);
     rows.a.push_back(i);
     rows.b.push_back(j);

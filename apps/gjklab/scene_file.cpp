@@ -1,5 +1,6 @@
 #include "gjklab/scene_file.hpp"
 
+#include <gsl/gsl_rng.h>
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,9 @@
 #include <random>
 #include <sstream>
 
+#include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/families.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::cli {
@@ -21,6 +24,10 @@ constexpr std::int64_t kMaxFrames = 100'000'000;
 constexpr std::int64_t kMaxBodies = 100'000;
 /// Tries per body of the random placement before the region is declared too full.
 constexpr int kPlacementAttempts = 1000;
+/// The shapes a [[bodies]] group may name (error messages).
+constexpr const char* kBodyShapes =
+    "box, cone, cylinder, sphere, uv_sphere, hull, mesh, ball, capsule, sphere_points, "
+    "ball_points, cube_points, gaussian, flat_points, collinear_points, sliver, prism, pyramid";
 
 int line_of(const toml::source_region& r) {
   return r.begin.line > 0 ? static_cast<int>(r.begin.line) : 1;
@@ -197,6 +204,9 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
   const Vec3 s = size_of(t);
   if (shape == "box") return scaled(shapes::box(), s);
   if (shape == "hull") return hull_points(t);
+  // Sphere-swept cores: a point (ball) and a segment of length `size` along x (capsule).
+  if (shape == "ball") return {Vec3::Zero()};
+  if (shape == "capsule") return {Vec3(-0.5 * s.x(), 0, 0), Vec3(0.5 * s.x(), 0, 0)};
   const auto v = static_cast<int>(t.integer("vertices",
                                             shape == "cone"       ? shapes::kDefaultConeVertices
                                             : shape == "cylinder" ? shapes::kDefaultCylinderVertices
@@ -205,28 +215,126 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
   try {
     if (shape == "cone") return scaled(shapes::cone(v), s);
     if (shape == "cylinder") return scaled(shapes::cylinder(v), s);
-    if (shape == "sphere") return scaled(shapes::uv_sphere(v), s);
+    if (shape == "sphere" || shape == "uv_sphere") return scaled(shapes::uv_sphere(v), s);
   } catch (const std::invalid_argument& e) {
     t.fail("vertices", e.what());
   }
-  t.fail("shape", "unknown shape '" + shape + "'; valid: box, cone, cylinder, sphere, hull");
+  t.fail("shape", "unknown shape '" + shape + "'; valid: " + kBodyShapes);
 }
 
-/// Shapes by their table text, so that a group's bodies share one hull.
+// ---- bodies from the experiment families ----
+
+/// The experiments' generated clouds a body group may name; each body draws its own cloud.
+struct FamilyCloud {
+  std::string_view name;
+  experiment::ShapeKind kind;
+};
+constexpr FamilyCloud kFamilyClouds[] = {
+    {"sphere_points", experiment::ShapeKind::sphere_points},
+    {"ball_points", experiment::ShapeKind::ball_points},
+    {"cube_points", experiment::ShapeKind::cube_points},
+    {"gaussian", experiment::ShapeKind::gaussian},
+    {"flat_points", experiment::ShapeKind::flat_points},
+    {"collinear_points", experiment::ShapeKind::collinear_points},
+    {"sliver", experiment::ShapeKind::sliver},
+    {"prism", experiment::ShapeKind::prism},
+    {"pyramid", experiment::ShapeKind::pyramid},
+};
+
+const FamilyCloud* family_cloud(const std::string& shape) {
+  for (const FamilyCloud& f : kFamilyClouds)
+    if (f.name == shape) return &f;
+  return nullptr;
+}
+
+struct GslRngDeleter {
+  void operator()(gsl_rng* r) const { gsl_rng_free(r); }
+};
+
+/// The generator of one body group's clouds: GSL's mt19937 (the experiments' generator),
+/// seeded from the scene seed and the group's index alone, so adding a group leaves the
+/// others' clouds and the placement stream as they were.
+std::unique_ptr<gsl_rng, GslRngDeleter> group_rng(std::uint64_t seed, std::size_t group) {
+  std::unique_ptr<gsl_rng, GslRngDeleter> r(gsl_rng_alloc(gsl_rng_mt19937));
+  if (!r) throw std::bad_alloc();
+  gsl_rng_set(r.get(), experiment::case_stream_seed(seed, group));
+  return r;
+}
+
+/// A generated cloud of the family shape: the experiments' unit cloud (within [-1, 1] of its
+/// centre), halved so that `size` is its extent as for the demo shapes, and scaled by size.
+std::vector<Vec3> family_cloud_points(const Table& t, const FamilyCloud& f, gsl_rng* r) {
+  const int n = static_cast<int>(t.integer("vertices", 32, 1, 100000));
+  const double aspect = t.number("aspect", 10, 1, 1e12);
+  std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, r, aspect);
+  const Vec3 s = 0.5 * size_of(t);
+  for (Vec3& v : cloud)
+    v = v.cwiseProduct(s);
+  return cloud;
+}
+
+/// The files a `mesh` group or static names (`path`: one .off/.obj/.ply/.stl file or a folder
+/// of them, in name order), relative to the scene file's folder.
+std::vector<std::vector<Vec3>> read_meshes(const Table& t) {
+  const std::string path = t.string("path", "");
+  if (path.empty()) t.fail("path", "missing (shape = \"mesh\" needs a mesh file or a folder)");
+  std::filesystem::path resolved(path);
+  if (resolved.is_relative()) resolved = std::filesystem::path(t.file()).parent_path() / resolved;
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(resolved, ec))
+      if (entry.is_regular_file() && exact::is_mesh_file(entry.path()))
+        files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    if (files.empty())
+      t.fail("path", resolved.string() + " holds no .off, .obj, .ply or .stl file");
+  } else if (std::filesystem::exists(resolved, ec)) {
+    files.push_back(resolved);
+  } else {
+    t.fail("path", resolved.string() + ": no such file or folder");
+  }
+  std::vector<std::vector<Vec3>> meshes;
+  const Vec3 s = size_of(t);
+  for (const auto& file : files) {
+    try {
+      meshes.push_back(exact::read_mesh_vertices(file));
+    } catch (const std::runtime_error& e) {
+      t.fail("path", e.what());
+    }
+    for (Vec3& v : meshes.back())
+      v = v.cwiseProduct(s);
+  }
+  return meshes;
+}
+
+/// The swept radius of a group (length units): `radius`, by default 0.5 for a ball and 0.25
+/// for a capsule (the demo shapes' half size and quarter size), 0 otherwise (no sweep).
+double swept_radius_of(const Table& t, const std::string& shape) {
+  const double fallback = shape == "ball" ? 0.5 : shape == "capsule" ? 0.25 : 0.0;
+  const double r = t.number("radius", fallback, 0, 1e12);
+  if ((shape == "ball" || shape == "capsule") && !(r > 0))
+    t.fail("radius", "a " + shape + " needs a radius > 0");
+  return r;
+}
+
+/// Shapes by their points and swept radius, so that bodies of one cloud share one hull.
 class ShapeCache {
  public:
   std::shared_ptr<const scene::ConvexShape> get(const Table& t, std::string_view key,
-                                                std::vector<Vec3> cloud) {
+                                                std::vector<Vec3> cloud, double radius = 0) {
     std::ostringstream k;
     k.precision(17);
+    k << radius << ':';
     for (const Vec3& v : cloud)
       k << v.x() << ' ' << v.y() << ' ' << v.z() << ';';
     auto& slot = cache_[k.str()];
     if (!slot) {
       try {
-        slot = scene::make_convex_shape(std::move(cloud));
+        slot = radius > 0 ? scene::make_swept_shape(std::move(cloud), radius)
+                          : scene::make_convex_shape(std::move(cloud));
       } catch (const std::invalid_argument& e) {
-        t.fail(key, e.what());
+        t.fail(radius > 0 ? "radius" : key, e.what());
       }
     }
     return slot;
@@ -300,21 +408,27 @@ std::vector<std::vector<Vec3>> funnel_panels(const Table& t) {
 
 void add_statics(const Table& root, SceneSetup& s, ShapeCache& shapes) {
   for (const Table& t : root.tables("static")) {
-    t.allow_only({"shape", "size", "points", "position", "rotation", "friction", "restitution",
-                  "bottom_radius", "top_radius", "height", "thickness", "segments"});
+    t.allow_only({"shape", "size", "points", "path", "position", "rotation", "friction",
+                  "restitution", "bottom_radius", "top_radius", "height", "thickness", "segments"});
     const std::string shape = t.string("shape", "");
-    if (shape.empty()) t.fail("shape", "missing (required): box, hull or funnel");
+    if (shape.empty()) t.fail("shape", "missing (required): box, hull, mesh or funnel");
     const Vec3 position = t.vec3("position", Vec3::Zero());
     const Quat rotation = rotation_of(t);
     std::vector<std::vector<Vec3>> clouds;
     if (shape == "funnel")
       clouds = funnel_panels(t);
+    else if (shape == "mesh")
+      clouds = read_meshes(t);  // every file of a folder at the same pose
     else if (shape == "box" || shape == "hull")
       clouds.push_back(cloud_of(t, shape));
     else
-      t.fail("shape", "unknown static shape '" + shape + "'; valid: box, hull, funnel");
+      t.fail("shape", "unknown static shape '" + shape + "'; valid: box, hull, mesh, funnel");
     for (auto& cloud : clouds) {
-      auto cs = shapes.get(t, shape == "hull" ? "points" : "shape", std::move(cloud));
+      auto cs = shapes.get(t,
+                           shape == "hull"   ? "points"
+                           : shape == "mesh" ? "path"
+                                             : "shape",
+                           std::move(cloud));
       // The cloud's own origin goes to `position`: the centre of mass sits where the cloud
       // put it relative to that origin.
       scene::RigidBody b = scene::make_static_body(
@@ -339,13 +453,30 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
   };
   std::vector<Placed> placed;
   std::vector<double> sizes;
+  std::size_t group = 0;
   for (const Table& t : root.tables("bodies")) {
-    t.allow_only({"shape", "size", "vertices", "points", "count", "density", "friction",
-                  "restitution", "placement", "position", "spacing", "row", "region",
-                  "random_rotation", "velocity"});
+    t.allow_only({"shape", "size", "vertices", "points", "path", "radius", "aspect", "count",
+                  "density", "friction", "restitution", "placement", "position", "spacing", "row",
+                  "region", "random_rotation", "velocity"});
     const std::string shape = t.string("shape", "");
-    if (shape.empty()) t.fail("shape", "missing (required): box, cone, cylinder, sphere or hull");
-    auto cs = shapes.get(t, shape == "hull" ? "points" : "shape", cloud_of(t, shape));
+    if (shape.empty()) t.fail("shape", std::string("missing (required): ") + kBodyShapes);
+    const double radius = swept_radius_of(t, shape);
+    // Generated clouds: one per body, from the group's own generator; meshes: body i takes
+    // file i mod count; the other shapes: one hull for the group.
+    const FamilyCloud* generated = family_cloud(shape);
+    const auto rng_of_group = generated ? group_rng(s.seed, group) : nullptr;
+    const std::vector<std::vector<Vec3>> meshes =
+        shape == "mesh" ? read_meshes(t) : std::vector<std::vector<Vec3>>{};
+    ++group;
+    auto shape_of_body = [&](std::int64_t i) {
+      if (generated)
+        return shapes.get(t, "shape", family_cloud_points(t, *generated, rng_of_group.get()),
+                          radius);
+      if (!meshes.empty())
+        return shapes.get(t, "path", meshes[static_cast<std::size_t>(i) % meshes.size()], radius);
+      return shapes.get(t, shape == "hull" ? "points" : "shape", cloud_of(t, shape), radius);
+    };
+    auto cs = shape_of_body(0);
     const auto count = t.integer("count", 1, 1, kMaxBodies);
     const double density = t.number("density", 1000, 1e-12, 1e12);
     const std::string placement = t.string("placement", "stack");
@@ -370,6 +501,7 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
     }
     std::uniform_real_distribution<double> u(0, 1);
     for (std::int64_t i = 0; i < count; ++i) {
+      if (i > 0 && (generated || meshes.size() > 1)) cs = shape_of_body(i);
       Vec3 centre;
       if (placement == "stack") {
         centre = origin + Vec3(0, 0, spacing * static_cast<double>(i));

@@ -475,10 +475,12 @@ void write_queries(const H5& h, hid_t file, const SceneSetup& s, const QueryRows
   std::vector<std::uint32_t> body_shape;
   std::vector<std::int64_t> offset{0};
   std::vector<double> vertices;
+  std::vector<double> radius;  // swept radius per shape (length units; 0: the polytope)
   for (const scene::RigidBody& b : s.world->bodies()) {
     auto it = std::find(seen.begin(), seen.end(), b.shape.get());
     if (it == seen.end()) {
       seen.push_back(b.shape.get());
+      radius.push_back(b.shape->swept_radius);
       for (const Vec3& v : b.shape->polytope.vertices())
         vertices.insert(vertices.end(), v.data(), v.data() + 3);
       offset.push_back(static_cast<std::int64_t>(vertices.size() / 3));
@@ -489,6 +491,7 @@ void write_queries(const H5& h, hid_t file, const SceneSetup& s, const QueryRows
   write_column(h, sg.id, "vertices", vertices, 3);
   write_column(h, sg.id, "offset", offset);
   write_column(h, sg.id, "body_shape", body_shape);
+  write_column(h, sg.id, "radius", radius);
 }
 
 void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string& scene_path,

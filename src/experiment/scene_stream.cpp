@@ -98,6 +98,11 @@ std::vector<StoredPair> read_scene_stream(const std::filesystem::path& archive) 
   const auto vertices = in.column<double>("shapes/vertices", H5T_NATIVE_DOUBLE);
   const auto offset = in.column<std::int64_t>("shapes/offset", H5T_NATIVE_INT64);
   const auto body_shape = in.column<std::uint32_t>("shapes/body_shape", H5T_NATIVE_UINT32);
+  // Swept radius per shape (archives before sphere-swept bodies have none: all polytopes).
+  const auto radius = in.has("shapes/radius")
+                          ? in.column<double>("shapes/radius", H5T_NATIVE_DOUBLE)
+                          : std::vector<double>(offset.empty() ? 0 : offset.size() - 1, 0.0);
+  if (radius.size() + 1 != offset.size()) in.fail("shapes/radius and shapes/offset disagree");
   const std::size_t n = frame.size();
   if (body_a.size() != n || body_b.size() != n || pose_a.size() != 12 * n ||
       pose_b.size() != 12 * n)
@@ -130,6 +135,8 @@ std::vector<StoredPair> read_scene_stream(const std::filesystem::path& archive) 
     p.id.append(std::to_string(body_a[q])).append("-").append(std::to_string(body_b[q]));
     p.a = cloud(body_a[q], pose_at(pose_a, q));
     p.b = cloud(body_b[q], pose_at(pose_b, q));
+    p.radius_a = radius[body_shape[body_a[q]]];
+    p.radius_b = radius[body_shape[body_b[q]]];
     p.warm = warm_start(warm_size[q], &warm_a[4 * q], &warm_b[4 * q], p.a, p.b);
     if (p.warm.size() != warm_size[q])
       in.fail("query " + std::to_string(q) + "'s warm start names a vertex its bodies lack");

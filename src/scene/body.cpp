@@ -81,6 +81,69 @@ std::shared_ptr<const ConvexShape> make_convex_shape(std::vector<Vec3> cloud) {
   return shape;
 }
 
+namespace {
+
+/// kSweptMassDirections directions on the unit sphere: a Fibonacci lattice on the upper
+/// half and its mirror image through the centre (a centrally symmetric set, so that a swept
+/// point's centre of mass is the point), scaled so that the hull of the points has the volume
+/// of the unit ball (a swept point then has the ball's exact volume; computed once).
+const std::vector<Vec3>& swept_mass_directions() {
+  static const std::vector<Vec3> directions = [] {
+    std::vector<Vec3> d;
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));  // the golden angle (rad)
+    const int half = kSweptMassDirections / 2;
+    for (int k = 0; k < half; ++k) {
+      const double z = 1.0 - (k + 0.5) / half;  // in (0, 1): the upper half only
+      const double r = std::sqrt(1.0 - z * z);
+      d.emplace_back(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    }
+    for (int k = 0; k < half; ++k)
+      d.push_back(-d[k]);
+    const exact::HullFeatures hull = exact::hull_features(d);
+    const double volume = mass_properties(hull.vertices, hull.faces).volume;
+    const double scale = std::cbrt((4.0 / 3.0) * M_PI / volume);
+    for (Vec3& v : d)
+      v *= scale;
+    return d;
+  }();
+  return directions;
+}
+
+}  // namespace
+
+std::shared_ptr<const ConvexShape> make_swept_shape(std::vector<Vec3> cloud, double radius) {
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw std::invalid_argument("a swept radius must be positive and finite, not " +
+                                std::to_string(radius));
+  const std::string problem = describe_invalid_cloud(cloud);
+  if (!problem.empty()) throw InvalidGeometry(problem);
+  exact::HullFeatures core = exact::hull_features(cloud);
+  // The swept body's mass: the hull of every core vertex moved along every direction.
+  std::vector<Vec3> grown;
+  grown.reserve(core.vertices.size() * kSweptMassDirections);
+  for (const Vec3& v : core.vertices)
+    for (const Vec3& d : swept_mass_directions())
+      grown.push_back(v + radius * d);
+  const exact::HullFeatures outer = exact::hull_features(grown);
+  const MassProperties mp = mass_properties(outer.vertices, outer.faces);
+  std::vector<Vec3> centred = core.vertices;
+  double reach = 0;
+  for (Vec3& v : centred) {
+    v -= mp.centroid;
+    reach = std::max(reach, v.norm());
+  }
+  // Faces for manifold clipping: a solid core's, or a flat core's two sides (its in-plane
+  // edge normals are not faces).
+  if (core.dimension < 3) core.face_normals.resize(core.faces.size());
+  auto shape = std::make_shared<ConvexShape>(
+      ConvexShape{Polytope(std::move(centred)), std::move(core.faces), std::move(core.face_normals),
+                  mp.volume, mp.unit_inertia, -mp.centroid, reach + radius, 0, radius});
+  const Vec3 extent =
+      shape->polytope.box_upper() - shape->polytope.box_lower() + Vec3::Constant(2 * radius);
+  shape->size = extent.norm();
+  return shape;
+}
+
 RigidBody make_dynamic_body(std::shared_ptr<const ConvexShape> shape, double density,
                             const Quat& orientation, const Vec3& position) {
   if (!(density > 0) || !std::isfinite(density))

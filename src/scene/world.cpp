@@ -113,10 +113,13 @@ std::size_t best_face(const ConvexShape& shape, const Mat3& rotation, const Vec3
 
 /// A manifold by clipping the incident face against the reference face; the normal it
 /// returns through `normal` is the reference face's (oriented from a to b). Empty when neither
-/// face is aligned with the normal or nothing survives the clipping.
+/// face is aligned with the normal or nothing survives the clipping. The faces are the cores';
+/// swept radii move the surfaces out along the normal (points midway between them, depths
+/// grown by both radii).
 std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& wa, const Mat3& ra,
                                          const ConvexShape& sb, const Polytope& wb, const Mat3& rb,
                                          Vec3& normal, double margin) {
+  if (sa.face_normals.empty() && sb.face_normals.empty()) return {};
   double align_a = 0, align_b = 0;
   const std::size_t fa = best_face(sa, ra, normal, align_a);
   const std::size_t fb = best_face(sb, rb, -normal, align_b);
@@ -129,11 +132,15 @@ std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& 
   const Polytope& iw = a_is_reference ? wb : wa;
   const Mat3& rr = a_is_reference ? ra : rb;
   const auto& ref_loop = rs.faces[a_is_reference ? fa : fb];
-  const auto& inc_loop = is.faces[a_is_reference ? fb : fa];
   const Vec3 nr = rr * rs.face_normals[a_is_reference ? fa : fb];  // out of the reference body
+  // The incident feature: its face, or all of a faceless core (a swept point or segment, whose
+  // alignment of −2 never makes it the reference).
   std::vector<Vec3> poly;
-  for (int v : inc_loop)
-    poly.push_back(iw.vertices()[v]);
+  if (is.faces.empty())
+    poly.assign(iw.vertices().begin(), iw.vertices().end());
+  else
+    for (int v : is.faces[a_is_reference ? fb : fa])
+      poly.push_back(iw.vertices()[v]);
   const std::size_t m = ref_loop.size();
   for (std::size_t k = 0; k < m && !poly.empty(); ++k) {
     const Vec3& p = rw.vertices()[ref_loop[k]];
@@ -141,10 +148,13 @@ std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& 
     poly = clip(poly, p, (q - p).cross(nr));  // side plane, outward for a loop CCW about nr
   }
   const Vec3 on_plane = rw.vertices()[ref_loop[0]];
+  const double r_ref = rs.swept_radius, r_inc = is.swept_radius;
   std::vector<ManifoldPoint> pts;
   for (const Vec3& x : poly) {
-    const double s = (x - on_plane).dot(nr);  // separation above the reference face
-    if (s <= margin) pts.push_back({x - 0.5 * s * nr, -s});
+    const double s = (x - on_plane).dot(nr);  // the cores' separation above the reference face
+    // Surfaces: the reference face moved out by r_ref, the incident point in by r_inc.
+    if (s - r_ref - r_inc <= margin)
+      pts.push_back({x - 0.5 * (s - r_ref + r_inc) * nr, r_ref + r_inc - s});
   }
   normal = a_is_reference ? nr : Vec3(-nr);
   return reduce_points(std::move(pts));
@@ -218,8 +228,8 @@ void World::bounding_boxes(double margin, std::vector<Aabb>& out) const {
     const Vec3 centre = 0.5 * (p.box_lower() + p.box_upper());
     const Vec3 half = 0.5 * (p.box_upper() - p.box_lower());
     // The rotated box's extent along each world axis: |R| times the half extents.
-    const Vec3 world_half =
-        b.pose.rotation.cwiseAbs() * half + Vec3::Constant(margin + sweep_distance(i));
+    const Vec3 world_half = b.pose.rotation.cwiseAbs() * half +
+                            Vec3::Constant(b.shape->swept_radius + margin + sweep_distance(i));
     const Vec3 world_centre = b.pose.apply(centre);
     out[i] = {world_centre - world_half, world_centre + world_half};
   }
@@ -271,9 +281,12 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
   cache.simplex.assign(kept.begin(), kept.end());
 
   // Contacts within the margin plus the distance the pair can close in this step; those
-  // beyond the margin are speculative (negative depth, see the solver's target).
+  // beyond the margin are speculative (negative depth, see the solver's target). Swept shapes:
+  // GJK measured their cores, whose surfaces lie `radii` (length units) closer together.
   const double margin = settings_.contact_margin + sweep_distance(ia) + sweep_distance(ib);
-  if (!r.intersect && !(r.distance < margin)) {
+  const double ra = bodies_[ia].shape->swept_radius, rb = bodies_[ib].shape->swept_radius;
+  const double radii = ra + rb;
+  if (!r.intersect && !(r.distance < margin + radii)) {
     cache.points.clear();
     return;
   }
@@ -285,14 +298,15 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
     ++stats.epa_queries;
     if (e.termination != Termination::converged) ++stats.failed_queries;
     normal = e.normal;
-    single = {0.5 * (e.witness_a + e.witness_b), e.depth};
+    single = {0.5 * (e.witness_a + e.witness_b) + 0.5 * (ra - rb) * normal, e.depth + radii};
   } else {
     const Vec3 ab = r.witness_b - r.witness_a;
     const double n = ab.norm();
     // A zero distance that GJK did not call contact: fall back to the centres' direction.
     normal =
         n > 0 ? Vec3(ab / n) : Vec3(bodies_[ib].pose.translation - bodies_[ia].pose.translation);
-    single = {0.5 * (r.witness_a + r.witness_b), -r.distance};
+    single = {0.5 * (r.witness_a + r.witness_b), radii - r.distance};
+    if (radii > 0 && n > 0) single.point += 0.5 * (ra - rb) * normal;
   }
   if (!normal.allFinite() || !(normal.norm() > 0) || !single.point.allFinite() ||
       !std::isfinite(single.depth)) {
