@@ -1047,26 +1047,31 @@ void read_measurement(const BenchFile& f, BenchConfig& c) {
   }
 }
 
+/// One published time (µs per pair or ms per scene): a finite number >= 0. TOML reads `inf`
+/// and `nan` as numbers, and the tables print the figure and its ratio to the measured time.
+double published_time(const BenchFile& f, const toml::node& v, const std::string& key) {
+  const auto x = v.value<double>();  // integers convert exactly
+  if (!x || !std::isfinite(*x) || *x < 0) f.fail(key + " must be a finite number >= 0");
+  return *x;
+}
+
 /// [published]: the figures the seed tables are compared with (µs per pair, ms per scene).
 void read_published(const BenchFile& f, const toml::table& pub, BenchConfig& c) {
   if (auto v = pub["source"].value<std::string>()) c.published_source = *v;
   if (const toml::table* pairs = pub["pair_us"].as_table())
-    for (const auto& [k, v] : *pairs) {
-      const auto x = v.value<double>();
-      if (!x) f.fail("published.pair_us." + std::string(k.str()) + " must be a number");
-      c.published_pair_us[std::string(k.str())] = *x;
-    }
+    for (const auto& [k, v] : *pairs)
+      c.published_pair_us[std::string(k.str())] =
+          published_time(f, v, "published.pair_us." + std::string(k.str()));
   if (const toml::table* scene = pub["scene_ms"].as_table())
     for (const auto& [k, v] : *scene) {
-      const auto x = v.value<double>();
-      if (!x) f.fail("published.scene_ms." + std::string(k.str()) + " must be a number");
+      const double x = published_time(f, v, "published.scene_ms." + std::string(k.str()));
       int objects = 0;
       const std::string_view name = k.str();
       const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), objects);
       if (ec != std::errc() || end != name.data() + name.size() || objects < 1)
         f.fail("published.scene_ms: key '" + std::string(name) +
                "' must be an object count (an integer >= 1)");
-      c.published_scene_ms[objects] = *x;
+      c.published_scene_ms[objects] = x;
     }
 }
 
@@ -1076,6 +1081,8 @@ BenchConfig load_bench_config(const std::string& path) {
   const BenchFile f(path);
   BenchConfig c;
   f.strings("suites", c.suites);
+  // An empty list would measure nothing and still exit 0.
+  if (c.suites.empty()) f.fail("suites must name at least one suite (seed, random, scene)");
   f.strings("algorithms", c.algorithms);
   f.allow_only({"suites", "algorithms", "reference", "samples", "batch_seconds", "configurations",
                 "seed", "cases", "published", "description", "precision"});

@@ -10,6 +10,7 @@
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/bench.hpp"
 #include "gjklab/experiment/cloud_io.hpp"
 
 using namespace gjklab;
@@ -151,6 +152,27 @@ TEST_CASE(
       experiment::read_archive_isolated(hostile("archive_experiment_name_global_heap_hang.h5")),
       Catch::Contains("did not finish within 2 s"));
   ::unsetenv("GJKLAB_ARCHIVE_READ_SECONDS");
+}
+
+TEST_CASE(
+    "bench config with a published scene time of inf: refused with its key, not accepted as a "
+    "figure",
+    "[regression][fuzz]") {
+  // TOML reads `inf` (and `nan`) as numbers; the loader took any number as a published time,
+  // and the seed tables printed it and its ratio to the measured time.
+  const std::string path =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/bench_published_scene_ms_inf.toml";
+  CHECK_THROWS_WITH(experiment::bench::load_bench_config(path),
+                    Catch::Contains("published.scene_ms.72 must be a finite number >= 0"));
+}
+
+TEST_CASE("bench config with an empty list of suites: refused, not a run that measures nothing",
+          "[regression][fuzz]") {
+  // `suites = []` was accepted: `gjklab bench` printed its header, measured nothing, exit 0.
+  const std::string path =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/bench_empty_suites.toml";
+  CHECK_THROWS_WITH(experiment::bench::load_bench_config(path),
+                    Catch::Contains("suites must name at least one suite"));
 }
 
 #ifdef GJKLAB_HAVE_FCL

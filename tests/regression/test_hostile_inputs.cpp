@@ -89,5 +89,9 @@ TEST_CASE("bench config: a non-numeric [published] key and values of the wrong t
   CHECK_THROWS_WITH(load("samples = \"31\"\n"), Catch::Contains("samples must be an integer"));
   CHECK_THROWS_WITH(load("batch_seconds = 1e300\n"), Catch::Contains("batch_seconds"));
   CHECK_THROWS_WITH(load("reference = 3\n"), Catch::Contains("reference must be a string"));
+  CHECK_THROWS_WITH(load("[published.pair_us]\n\"box-box\" = nan\n"),
+                    Catch::Contains("published.pair_us.box-box must be a finite number >= 0"));
+  CHECK_THROWS_WITH(load("[published.scene_ms]\n32 = -1.5\n"),
+                    Catch::Contains("published.scene_ms.32 must be a finite number >= 0"));
   CHECK(load("samples = 7\n[published.scene_ms]\n32 = 1.5\n").samples == 7);
 }
