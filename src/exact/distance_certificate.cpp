@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "filtered_distance.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gmp_support.hpp"
 #include "integer_geometry.hpp"
@@ -346,9 +347,11 @@ std::optional<DistanceCertificate> certify_with(std::span<const Vec3> a, std::sp
 
 }  // namespace
 
-std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
-                                                    std::span<const Vec3> b,
-                                                    const DistanceHint& hint, int max_steps) {
+namespace detail {
+
+std::optional<DistanceCertificate> certify_distance_exact(std::span<const Vec3> a,
+                                                          std::span<const Vec3> b,
+                                                          const DistanceHint& hint, int max_steps) {
   if (a.empty() || b.empty()) return std::nullopt;
   try {
     return certify_with<Wide>(a, b, hint, max_steps);
@@ -357,6 +360,18 @@ std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
     // same steps with GMP integers, which give the same answer.
   }
   return certify_with<Int>(a, b, hint, max_steps);
+}
+
+}  // namespace detail
+
+std::optional<DistanceCertificate> certify_distance(std::span<const Vec3> a,
+                                                    std::span<const Vec3> b,
+                                                    const DistanceHint& hint, int max_steps) {
+  if (a.empty() || b.empty()) return std::nullopt;
+  // Nearly every converged hint is decided in floating point; the rest by exact GJK.
+  if (std::optional<DistanceCertificate> filtered = detail::certify_distance_filtered(a, b, hint))
+    return filtered;
+  return detail::certify_distance_exact(a, b, hint, max_steps);
 }
 
 }  // namespace gjklab::exact

@@ -1,0 +1,621 @@
+// The distance certificate of a GJK simplex, decided in floating point with proven error bounds.
+//
+// The hint's pairs (a_k, b_k) give points W_k = a_k − b_k of A − B. When the origin's nearest
+// point v of the affine hull of the W_k lies strictly inside their hull (every barycentric
+// weight > 0), p = Σ λ_k a_k and q = Σ λ_k b_k are points of conv A and conv B with v = p − q.
+// The pair is then at distance ‖v‖ iff the plane through p orthogonal to v supports A and the
+// one through q supports B: v·(a − a_0) ≥ 0 for every a ∈ A and v·(b − b_0) ≤ 0 for every b ∈ B,
+// provided every a_k has v·a_k = v·a_0 and every b_k has v·b_k = v·b_0. That proviso holds
+// exactly, with no test, when the pairs form one connected feature pair: seen as the edges of
+// a graph on their distinct A and B indices, they are connected (a vertex and a face, two
+// edges, a vertex and an edge ...). Then every a_k − a_0 is an alternating sum of W's, so it
+// lies in the directions of the W's affine hull, to which v is orthogonal. Otherwise (parallel
+// faces, say) the proviso is checked exactly on the feature's own points.
+//
+// Each quantity is evaluated in long double with a running bound on its error (Approx), and a
+// sign is taken only when the value exceeds its bound. The O(|A| + |B|) scan runs in double
+// with a bound per point; the few points within their bound of a plane (coplanar vertices of a
+// face, say) are decided exactly in integers. The nearest doubles of the distance and of the
+// witness points are taken when their interval lies inside one double's rounding cell. Any
+// undecided step gives nullopt, and the exact certificate decides instead.
+#include "filtered_distance.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "gmp_support.hpp"
+#include "integer_geometry.hpp"
+#include "wide_int.hpp"
+#include "wide_rounding.hpp"
+
+namespace gjklab::exact::detail {
+
+namespace {
+
+// The integer overloads (integer_geometry.hpp) next to the floating-point ones below.
+using detail::cross;
+using detail::dot;
+using detail::operator-;
+
+using Real = long double;
+// The products below have degree ≤ 8 in the coordinates, so the exponent range of an x87 or
+// IEEE quad long double holds them without overflow or underflow for any finite doubles.
+static_assert(std::numeric_limits<Real>::max_exponent >= 16 * 1024 / 2, "wide long double");
+static_assert(std::numeric_limits<Real>::digits >= 64, "long double with a 64-bit mantissa");
+
+/// Relative error bound of one rounded long double operation (twice the unit roundoff).
+constexpr Real kUnit = std::numeric_limits<Real>::epsilon();
+/// Covers the rounding of the error bounds' own arithmetic (relative, a few ulps per step).
+constexpr Real kSafety = 1 + 0x1p-40L;
+
+/// A value v with |exact − v| ≤ err.
+struct Approx {
+  Real v = 0;
+  Real err = 0;
+};
+
+Approx input(double x) {
+  return {x, 0};
+}
+Approx operator+(const Approx& x, const Approx& y) {
+  const Real v = x.v + y.v;
+  return {v, x.err + y.err + kUnit * std::fabs(v)};
+}
+Approx operator-(const Approx& x, const Approx& y) {
+  const Real v = x.v - y.v;
+  return {v, x.err + y.err + kUnit * std::fabs(v)};
+}
+Approx operator-(const Approx& x) {
+  return {-x.v, x.err};
+}
+Approx operator*(const Approx& x, const Approx& y) {
+  const Real v = x.v * y.v;
+  return {v,
+          std::fabs(x.v) * y.err + std::fabs(y.v) * x.err + x.err * y.err + kUnit * std::fabs(v)};
+}
+/// x / y for y decided non-zero (|y.v| > y.err).
+Approx operator/(const Approx& x, const Approx& y) {
+  const Real v = x.v / y.v;
+  const Real room = std::fabs(y.v) - y.err * kSafety;
+  if (!(room > 0)) return {0, std::numeric_limits<Real>::infinity()};  // undecidable
+  return {v, (x.err + std::fabs(v) * y.err) / room * kSafety + kUnit * std::fabs(v)};
+}
+
+bool positive(const Approx& x) {
+  return x.v > x.err * kSafety;
+}
+bool negative(const Approx& x) {
+  return -x.v > x.err * kSafety;
+}
+
+using AVec = std::array<Approx, 3>;
+
+AVec input(const Vec3& p) {
+  return {input(p.x()), input(p.y()), input(p.z())};
+}
+AVec operator-(const AVec& x, const AVec& y) {
+  return {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
+}
+AVec operator+(const AVec& x, const AVec& y) {
+  return {x[0] + y[0], x[1] + y[1], x[2] + y[2]};
+}
+AVec operator*(const Approx& s, const AVec& x) {
+  return {s * x[0], s * x[1], s * x[2]};
+}
+Approx dot(const AVec& x, const AVec& y) {
+  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+AVec cross(const AVec& x, const AVec& y) {
+  return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+}
+bool nonzero(const AVec& x) {
+  return std::any_of(x.begin(), x.end(),
+                     [](const Approx& c) { return positive(c) || negative(c); });
+}
+
+/// [lo, hi] ⊇ [x.v − x.err, x.v + x.err], rounded outwards.
+struct Interval {
+  Real lo, hi;
+};
+Interval widen(const Approx& x) {
+  constexpr Real kTiny = std::numeric_limits<Real>::denorm_min();
+  const Real lo = x.v - x.err * kSafety, hi = x.v + x.err * kSafety;
+  return {lo - (std::fabs(lo) * kUnit + kTiny), hi + (std::fabs(hi) * kUnit + kTiny)};
+}
+
+/// The double nearest to every real number in r, if there is one (strictly inside its rounding
+/// cell, so no tie to break).
+std::optional<double> nearest_double(const Interval& r) {
+  const auto candidate = static_cast<double>((r.lo + r.hi) / 2);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double below = std::nextafter(candidate, -kInf), above = std::nextafter(candidate, kInf);
+  if (!std::isfinite(below) || !std::isfinite(above)) return std::nullopt;
+  // Two neighbouring doubles add exactly in a 64-bit mantissa, and halving is exact.
+  const Real low_edge = (static_cast<Real>(candidate) + below) / 2;
+  const Real high_edge = (static_cast<Real>(candidate) + above) / 2;
+  if (low_edge < r.lo && r.hi < high_edge) return candidate;
+  return std::nullopt;
+}
+
+/// The double nearest to √x for x decided positive.
+std::optional<double> nearest_sqrt(const Approx& x) {
+  const Interval r = widen(x);
+  if (!(r.lo > 0)) return std::nullopt;
+  // sqrt is correctly rounded; scaling by 1 ∓ 2ε more than covers it and its own rounding.
+  return nearest_double({std::sqrt(r.lo) * (1 - 2 * kUnit), std::sqrt(r.hi) * (1 + 2 * kUnit)});
+}
+
+std::optional<Vec3> nearest_point(const AVec& x) {
+  Vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    const std::optional<double> c = nearest_double(widen(x[i]));
+    if (!c) return std::nullopt;
+    out[i] = *c;
+  }
+  return out;
+}
+
+/// The hint's pairs, when they are distinct, in range and at most four.
+struct Feature {
+  int size = 0;
+  std::array<IndexPair, 4> pairs;
+  std::array<Vec3, 4> a, b;  ///< the pairs' points
+  /// The pairs, as edges between their A and B indices, form one connected graph (see the
+  /// file comment): then v·a_k = v·a_0 and v·b_k = v·b_0 hold with no test.
+  bool connected = false;
+};
+
+int distinct_count(const std::array<std::int32_t, 4>& ids, int n) {
+  int count = 0;
+  for (int i = 0; i < n; ++i)
+    if (std::find(ids.begin(), ids.begin() + i, ids[i]) == ids.begin() + i) ++count;
+  return count;
+}
+
+/// One node for 1 pair, a shared index for 2, and for 3 distinct pairs four distinct indices
+/// in all (a path or a star; 5 or 6 would mean two components).
+bool is_connected(const Feature& f) {
+  std::array<std::int32_t, 4> ia{}, ib{};
+  for (int k = 0; k < f.size; ++k) {
+    ia[k] = f.pairs[k].a;
+    ib[k] = f.pairs[k].b;
+  }
+  if (f.size == 2) return ia[0] == ia[1] || ib[0] == ib[1];
+  if (f.size == 3) return distinct_count(ia, 3) + distinct_count(ib, 3) == 4;
+  return f.size == 1;
+}
+
+std::optional<Feature> feature_of(std::span<const Vec3> a, std::span<const Vec3> b,
+                                  const DistanceHint& hint) {
+  Feature f;
+  if (hint.simplex.empty() || hint.simplex.size() > 4) return std::nullopt;
+  for (const IndexPair& p : hint.simplex) {
+    if (p.a < 0 || p.b < 0 || static_cast<std::size_t>(p.a) >= a.size() ||
+        static_cast<std::size_t>(p.b) >= b.size())
+      return std::nullopt;
+    if (std::find(f.pairs.begin(), f.pairs.begin() + f.size, p) != f.pairs.begin() + f.size)
+      return std::nullopt;
+    f.pairs[f.size] = p;
+    f.a[f.size] = a[p.a];
+    f.b[f.size] = b[p.b];
+    ++f.size;
+  }
+  f.connected = is_connected(f);
+  return f;
+}
+
+/// The floating-point geometry of a feature whose nearest point to the origin is inside it:
+/// a positive multiple `direction` of v, the squared distance ‖v‖², and p and q.
+struct Nearest {
+  AVec direction;
+  Approx distance_squared;
+  AVec p, q;
+};
+
+/// p = a_0 + Σ_{k≥1} λ_k (a_k − a_0) for the weights λ_1 … of a feature (and q likewise).
+void set_witnesses(const Feature& f, std::span<const Approx> weights, Nearest& out) {
+  const AVec a0 = input(f.a[0]), b0 = input(f.b[0]);
+  out.p = a0;
+  out.q = b0;
+  for (int k = 1; k < f.size; ++k) {
+    out.p = out.p + weights[k - 1] * (input(f.a[k]) - a0);
+    out.q = out.q + weights[k - 1] * (input(f.b[k]) - b0);
+  }
+}
+
+std::optional<Nearest> nearest_of_point(const Feature& f) {
+  Nearest out;
+  out.direction = input(f.a[0]) - input(f.b[0]);
+  if (!nonzero(out.direction)) return std::nullopt;
+  out.distance_squared = dot(out.direction, out.direction);
+  set_witnesses(f, {}, out);
+  return out;
+}
+
+/// Segment W0 W1, e = W1 − W0: v = W0 + λ e with λ = −e·W0 / e·e strictly inside (0, 1), and
+/// (e·e)·v = e × (W0 × e).
+std::optional<Nearest> nearest_of_segment(const Feature& f) {
+  const AVec w0 = input(f.a[0]) - input(f.b[0]), w1 = input(f.a[1]) - input(f.b[1]);
+  const AVec e = w1 - w0;
+  const Approx along0 = dot(e, w0), along1 = dot(e, w1), ee = dot(e, e);
+  if (!negative(along0) || !positive(along1) || !positive(ee)) return std::nullopt;
+  const AVec side = cross(w0, e);
+  if (!nonzero(side)) return std::nullopt;  // the origin on the segment's line
+  Nearest out;
+  out.direction = cross(e, side);
+  out.distance_squared = dot(side, side) / ee;
+  const Approx weight = -along0 / ee;
+  set_witnesses(f, {&weight, 1}, out);
+  return out;
+}
+
+/// Triangle W0 W1 W2, n = (W1 − W0) × (W2 − W0): v = (n·W0 / n·n) n, with barycentric weights
+/// n·(W1 × W2), n·(W2 × W0), n·(W0 × W1) over n·n, all strictly positive.
+std::optional<Nearest> nearest_of_triangle(const Feature& f) {
+  std::array<AVec, 3> w;
+  for (int k = 0; k < 3; ++k)
+    w[k] = input(f.a[k]) - input(f.b[k]);
+  const AVec n = cross(w[1] - w[0], w[2] - w[0]);
+  const Approx height = dot(n, w[0]), nn = dot(n, n);
+  const std::array<Approx, 3> area = {dot(n, cross(w[1], w[2])), dot(n, cross(w[2], w[0])),
+                                      dot(n, cross(w[0], w[1]))};
+  if (!std::all_of(area.begin(), area.end(), positive) || !positive(nn)) return std::nullopt;
+  Nearest out;
+  if (positive(height))
+    out.direction = n;
+  else if (negative(height))
+    out.direction = {-n[0], -n[1], -n[2]};
+  else
+    return std::nullopt;  // the origin in the triangle's plane
+  out.distance_squared = height * height / nn;
+  const std::array<Approx, 2> weights = {area[1] / nn, area[2] / nn};
+  set_witnesses(f, weights, out);
+  return out;
+}
+
+/// Tetrahedron W0 … W3 with the origin strictly inside: barycentric weights from Cramer's rule
+/// on [e1 e2 e3]·μ = −W0, all of one sign with the determinant. p = q is a common point.
+std::optional<Nearest> common_point_of_tetrahedron(const Feature& f) {
+  std::array<AVec, 4> w;
+  for (int k = 0; k < 4; ++k)
+    w[k] = input(f.a[k]) - input(f.b[k]);
+  const AVec e1 = w[1] - w[0], e2 = w[2] - w[0], e3 = w[3] - w[0];
+  const AVec minus_w0 = {-w[0][0], -w[0][1], -w[0][2]};
+  const Approx det = dot(e1, cross(e2, e3));
+  const std::array<Approx, 3> l = {dot(minus_w0, cross(e2, e3)), dot(e1, cross(minus_w0, e3)),
+                                   dot(e1, cross(e2, minus_w0))};
+  const Approx l0 = det - l[0] - l[1] - l[2];
+  const bool up = positive(det);
+  if (!up && !negative(det)) return std::nullopt;
+  for (const Approx& x : {l0, l[0], l[1], l[2]})
+    if (up ? !positive(x) : !negative(x)) return std::nullopt;
+  Nearest out;
+  const std::array<Approx, 3> weights = {l[0] / det, l[1] / det, l[2] / det};
+  set_witnesses(f, weights, out);
+  return out;
+}
+
+/// Points of a cloud whose side of the plane the double scan could not decide.
+using Ties = std::vector<std::size_t>;
+
+/// The scan's direction: the long double direction scaled by a power of two (so that its
+/// largest component is near 1) and rounded to doubles, and per component a bound w_i such
+/// that |computed d·(x − x_r) − exact| ≤ Σ w_i |x_i − x_ri| + 2^-1070 (see filtered_distance.cpp's
+/// header: the direction's error, the rounding of x − x_r, of the products and of the sums).
+struct ScanDirection {
+  std::array<double, 3> d{}, w{};
+};
+
+std::optional<ScanDirection> scan_direction(const AVec& v) {
+  Real top = 0;
+  for (const Approx& c : v)
+    top = std::max(top, std::fabs(c.v));
+  if (!(top > 0) || !std::isfinite(top)) return std::nullopt;
+  const Real scale = std::ldexp(Real{1}, -std::ilogb(top));  // exact: a power of two
+  ScanDirection out;
+  for (int i = 0; i < 3; ++i) {
+    out.d[i] = static_cast<double>(v[i].v * scale);
+    // Error of d_i against the exact scaled component: v's bound, plus the rounding to double
+    // (relative 2^-53, or absolute 2^-1075 below the normal range).
+    const Real error = v[i].err * scale * kSafety + 0x1p-52L * std::fabs(out.d[i]) + 0x1p-1074L;
+    out.w[i] = static_cast<double>((error + 0x1p-50L * std::fabs(out.d[i])) * (1 + 0x1p-45L));
+  }
+  return out;
+}
+
+/// Scans a cloud: every x must satisfy sign·d·(x − x_r) ≥ 0. False when a point is decided on
+/// the wrong side; points too close to call go to `ties` (those in `skip`, the feature's own
+/// points, lie on the plane exactly and need no test).
+bool scan_side(std::span<const Vec3> cloud, const Vec3& ref, const ScanDirection& s, double sign,
+               std::span<const std::int32_t> skip, Ties& ties) {
+  constexpr double kUnderflow = 0x1p-1070;
+  constexpr double kBoundSafety = 1 + 0x1p-40;
+  const double d0 = sign * s.d[0], d1 = sign * s.d[1], d2 = sign * s.d[2];
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double x = cloud[i].x() - ref.x(), y = cloud[i].y() - ref.y(), z = cloud[i].z() - ref.z();
+    const double value = (d0 * x + d1 * y) + d2 * z;
+    const double bound =
+        ((s.w[0] * std::abs(x) + s.w[1] * std::abs(y)) + s.w[2] * std::abs(z) + kUnderflow) *
+        kBoundSafety;
+    if (value > bound) continue;
+    if (-value > bound) return false;
+    if (std::find(skip.begin(), skip.end(), static_cast<std::int32_t>(i)) == skip.end())
+      ties.push_back(i);
+  }
+  return true;
+}
+
+/// The exact direction of v (a positive multiple) in integers of the frame 2^exponent.
+template <class I>
+Vec3Of<I> exact_direction(const Feature& f, long exponent) {
+  std::array<Vec3Of<I>, 3> w;
+  for (int k = 0; k < f.size; ++k)
+    w[k] = to_integer<I>(f.a[k], exponent) - to_integer<I>(f.b[k], exponent);
+  if (f.size == 1) return w[0];
+  if (f.size == 2) {
+    const Vec3Of<I> e = w[1] - w[0];
+    return cross(e, cross(w[0], e));
+  }
+  Vec3Of<I> n = cross(w[1] - w[0], w[2] - w[0]);
+  if (sgn(dot(n, w[0])) < 0) n = {-n[0], -n[1], -n[2]};
+  return n;
+}
+
+long feature_frame(const Feature& f);
+
+/// The finest unit of the feature's and the tied points' coordinates.
+long tie_frame(const Feature& f, std::span<const Vec3> a, std::span<const Vec3> b,
+               const Ties& ties_a, const Ties& ties_b) {
+  long lowest = feature_frame(f);
+  const auto take = [&](const Vec3& p) {
+    for (int i = 0; i < 3; ++i)
+      if (p[i] != 0) lowest = std::min(lowest, base_exponent(p[i]));
+  };
+  for (std::size_t i : ties_a)
+    take(a[i]);
+  for (std::size_t i : ties_b)
+    take(b[i]);
+  return lowest;
+}
+
+/// The tied points decided exactly: v·(a − a_0) ≥ 0 and v·(b − b_0) ≤ 0; and for a feature
+/// that is not connected, v·(a_k − a_0) = 0 and v·(b_k − b_0) = 0 for its own points.
+template <class I>
+bool ties_hold(const Feature& f, std::span<const Vec3> a, std::span<const Vec3> b,
+               const Ties& ties_a, const Ties& ties_b) {
+  const long exponent = tie_frame(f, a, b, ties_a, ties_b);
+  const Vec3Of<I> v = exact_direction<I>(f, exponent);
+  const Vec3Of<I> a0 = to_integer<I>(f.a[0], exponent), b0 = to_integer<I>(f.b[0], exponent);
+  for (std::size_t i : ties_a)
+    if (sgn(dot(v, to_integer<I>(a[i], exponent) - a0)) < 0) return false;
+  for (std::size_t i : ties_b)
+    if (sgn(dot(v, to_integer<I>(b[i], exponent) - b0)) > 0) return false;
+  if (f.connected) return true;
+  for (int k = 1; k < f.size; ++k)
+    if (sgn(dot(v, to_integer<I>(f.a[k], exponent) - a0)) != 0 ||
+        sgn(dot(v, to_integer<I>(f.b[k], exponent) - b0)) != 0)
+      return false;
+  return true;
+}
+
+/// Both planes support their clouds: the double scan, then the ties exactly.
+bool planes_support(const Feature& f, std::span<const Vec3> a, std::span<const Vec3> b,
+                    const AVec& direction) {
+  const std::optional<ScanDirection> s = scan_direction(direction);
+  if (!s) return false;
+  // The feature's own points lie on the planes (exactly, or checked so in ties_hold).
+  std::array<std::int32_t, 4> own_a{}, own_b{};
+  for (int k = 0; k < f.size; ++k) {
+    own_a[k] = f.pairs[k].a;
+    own_b[k] = f.pairs[k].b;
+  }
+  thread_local Ties ties_a, ties_b;
+  ties_a.clear();
+  ties_b.clear();
+  if (!scan_side(a, f.a[0], *s, 1.0, {own_a.data(), std::size_t(f.size)}, ties_a)) return false;
+  if (!scan_side(b, f.b[0], *s, -1.0, {own_b.data(), std::size_t(f.size)}, ties_b)) return false;
+  if (ties_a.empty() && ties_b.empty() && f.connected) return true;
+  try {
+    return ties_hold<Wide>(f, a, b, ties_a, ties_b);
+  } catch (const WideOverflow&) {
+    return ties_hold<Int>(f, a, b, ties_a, ties_b);  // the same test, with room to grow
+  }
+}
+
+/// The finest unit of the feature's coordinates: each is an integer multiple of 2^result.
+long feature_frame(const Feature& f) {
+  long lowest = std::numeric_limits<long>::max();
+  for (int k = 0; k < f.size; ++k)
+    for (const Vec3* p : {&f.a[k], &f.b[k]})
+      for (int i = 0; i < 3; ++i)
+        if ((*p)[i] != 0) lowest = std::min(lowest, base_exponent((*p)[i]));
+  return lowest == std::numeric_limits<long>::max() ? 0 : lowest;
+}
+
+/// The feature's points and W_k = a_k − b_k as integers of its frame.
+template <class I>
+struct IntegerFeature {
+  long exponent = 0;
+  std::array<Vec3Of<I>, 4> a, b, w;
+};
+
+template <class I>
+IntegerFeature<I> integer_feature(const Feature& f) {
+  IntegerFeature<I> out;
+  out.exponent = feature_frame(f);
+  for (int k = 0; k < f.size; ++k) {
+    out.a[k] = to_integer<I>(f.a[k], out.exponent);
+    out.b[k] = to_integer<I>(f.b[k], out.exponent);
+    out.w[k] = out.a[k] - out.b[k];
+  }
+  return out;
+}
+
+/// ‖v‖² = num/den·4^exponent exactly (see Nearest): |W0|², |W0 × e|²/|e|² or (n·W0)²/|n|².
+template <class I>
+struct Fraction {
+  I num, den;
+  long exponent = 0;
+};
+
+template <class I>
+Fraction<I> exact_distance_squared(const Feature& f) {
+  const IntegerFeature<I> x = integer_feature<I>(f);
+  Fraction<I> out{0, 1, x.exponent};
+  if (f.size == 1) {
+    out.num = dot(x.w[0], x.w[0]);
+  } else if (f.size == 2) {
+    const Vec3Of<I> e = x.w[1] - x.w[0], side = cross(x.w[0], e);
+    out.num = dot(side, side);
+    out.den = dot(e, e);
+  } else {
+    const Vec3Of<I> n = cross(x.w[1] - x.w[0], x.w[2] - x.w[0]);
+    const I h = dot(n, x.w[0]);
+    out.num = h * h;
+    out.den = dot(n, n);
+  }
+  return out;
+}
+
+void set_exact_distance_squared(const Feature& f, mpq_ptr out) {
+  const Fraction<Int> d2 = exact_distance_squared<Int>(f);
+  const long shift = 2 * d2.exponent;
+  mpz_mul_2exp(mpq_numref(out), d2.num.get_mpz_t(), shift > 0 ? shift : 0);
+  mpz_mul_2exp(mpq_denref(out), d2.den.get_mpz_t(), shift < 0 ? -shift : 0);
+}
+
+/// The distance's nearest double, exactly (when the long double interval straddles a rounding
+/// boundary): with Wide integers, or GMP's where those overflow or the value is not normal.
+double exact_distance(const Feature& f) {
+  try {
+    const Fraction<Wide> d2 = exact_distance_squared<Wide>(f);
+    if (const std::optional<double> r = detail::nearest_sqrt(d2.num, d2.den, 2 * d2.exponent))
+      return *r;
+  } catch (const WideOverflow&) {
+  }
+  Mpq d2;
+  set_exact_distance_squared(f, d2.get());
+  return detail::nearest_sqrt(d2.get());
+}
+
+/// The barycentric weights of the feature's nearest point (or, for four pairs, of the origin)
+/// as integers: p = (D·a_0 + Σ_{k≥1} c_k (a_k − a_0)) / D, D > 0 (see the nearest_of_* above).
+template <class I>
+void exact_weights(const IntegerFeature<I>& x, int size, std::array<I, 3>& c, I& d) {
+  const auto& w = x.w;
+  if (size == 2) {
+    const Vec3Of<I> e = w[1] - w[0];
+    c[0] = -dot(e, w[0]);
+    d = dot(e, e);
+  } else if (size == 3) {
+    const Vec3Of<I> n = cross(w[1] - w[0], w[2] - w[0]);
+    c[0] = dot(n, cross(w[2], w[0]));
+    c[1] = dot(n, cross(w[0], w[1]));
+    d = dot(n, n);
+  } else if (size == 4) {
+    const Vec3Of<I> e1 = w[1] - w[0], e2 = w[2] - w[0], e3 = w[3] - w[0];
+    const Vec3Of<I> minus_w0 = {-w[0][0], -w[0][1], -w[0][2]};
+    d = dot(e1, cross(e2, e3));
+    c = {dot(minus_w0, cross(e2, e3)), dot(e1, cross(minus_w0, e3)), dot(e1, cross(e2, minus_w0))};
+    if (sgn(d) < 0) {
+      d = -d;
+      for (I& ck : c)
+        ck = -ck;
+    }
+  }
+}
+
+double nearest_quotient_of(const Int& num, const Int& den, long exponent) {
+  return detail::nearest_double(num.get_mpz_t(), den.get_mpz_t(), exponent);
+}
+double nearest_quotient_of(const Wide& num, const Wide& den, long exponent) {
+  if (const std::optional<double> r = detail::nearest_quotient(num, den, exponent)) return *r;
+  Int n, d;
+  num.to_mpz(n.get_mpz_t());
+  den.to_mpz(d.get_mpz_t());
+  return nearest_quotient_of(n, d, exponent);
+}
+
+/// The witness points' nearest doubles, exactly.
+template <class I>
+std::pair<Vec3, Vec3> exact_witnesses(const Feature& f) {
+  const IntegerFeature<I> x = integer_feature<I>(f);
+  std::array<I, 3> c{0, 0, 0};
+  I d = 1;
+  exact_weights(x, f.size, c, d);
+  const auto combine = [&](const std::array<Vec3Of<I>, 4>& points) {
+    Vec3 out;
+    for (int j = 0; j < 3; ++j) {
+      I sum = d * points[0][j];
+      for (int k = 1; k < f.size; ++k)
+        sum += c[k - 1] * (points[k][j] - points[0][j]);
+      out[j] = nearest_quotient_of(sum, d, x.exponent);
+    }
+    return out;
+  };
+  return {combine(x.a), combine(x.b)};
+}
+
+std::pair<Vec3, Vec3> exact_witnesses(const Feature& f) {
+  try {
+    return exact_witnesses<Wide>(f);
+  } catch (const WideOverflow&) {
+    return exact_witnesses<Int>(f);
+  }
+}
+
+/// The certificate from a decided Nearest: the roundings in long double where their interval
+/// shows them, else exactly.
+DistanceCertificate answer(const Feature& f, const Nearest& nearest, bool intersect) {
+  DistanceCertificate out;
+  out.intersect = intersect;
+  const std::optional<Vec3> p = nearest_point(nearest.p), q = nearest_point(nearest.q);
+  if (p && q) {
+    out.witness_a = *p;
+    out.witness_b = *q;
+  } else {
+    std::tie(out.witness_a, out.witness_b) = exact_witnesses(f);
+  }
+  if (!intersect) {
+    const std::optional<double> distance = nearest_sqrt(nearest.distance_squared);
+    out.distance = distance ? *distance : exact_distance(f);
+    out.distance_squared =
+        lazy_rational(false, [f](mpq_ptr value) { set_exact_distance_squared(f, value); });
+  }
+  out.feature.simplex.assign(f.pairs.begin(), f.pairs.begin() + f.size);
+  return out;
+}
+
+}  // namespace
+
+std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec3> a,
+                                                             std::span<const Vec3> b,
+                                                             const DistanceHint& hint) {
+  const std::optional<Feature> f = feature_of(a, b, hint);
+  if (!f) return std::nullopt;
+  if (f->size == 4) {
+    const std::optional<Nearest> common = common_point_of_tetrahedron(*f);
+    if (!common) return std::nullopt;
+    return answer(*f, *common, true);
+  }
+  if (f->size == 1 && f->a[0] == f->b[0]) {  // a shared point: intersecting
+    Nearest same;
+    set_witnesses(*f, {}, same);
+    return answer(*f, same, true);
+  }
+  const std::optional<Nearest> nearest = f->size == 1   ? nearest_of_point(*f)
+                                         : f->size == 2 ? nearest_of_segment(*f)
+                                                        : nearest_of_triangle(*f);
+  if (!nearest || !planes_support(*f, a, b, nearest->direction)) return std::nullopt;
+  return answer(*f, *nearest, false);
+}
+
+}  // namespace gjklab::exact::detail

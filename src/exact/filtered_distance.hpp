@@ -1,0 +1,32 @@
+// Internal to src/exact/: the distance certificate decided in floating point where that is
+// provably right, before the exact certificate (distance_certificate.cpp). No CGAL here.
+#pragma once
+
+#include <optional>
+#include <span>
+
+#include "gjklab/exact/certificate.hpp"
+
+namespace gjklab::exact::detail {
+
+/// The hint's own simplex certified without exact arithmetic wherever a floating-point
+/// evaluation with a proven error bound decides: that the origin's nearest point v of the
+/// simplex's hull lies inside it (every barycentric weight > 0), that every point of A and B
+/// lies on its side of the planes through the closest points orthogonal to v (points within
+/// the error bound of a plane, and only those, are decided exactly in integers), and the
+/// nearest doubles of the distance and of the witness points (in long double, with a bound).
+/// The exact squared distance is a Rational made from the feature's points on first use.
+/// nullopt when any step is too close to call, the hint does not hold, its pairs repeat, or an
+/// index is out of range: the exact certificate then decides. Never certifies what the exact
+/// certificate would not: both answers, when given, are the same.
+std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec3> a,
+                                                             std::span<const Vec3> b,
+                                                             const DistanceHint& hint);
+
+/// The exact certificate alone: exact GJK from the hint for at most max_steps steps
+/// (distance_certificate.cpp). certify_distance tries the filtered one first.
+std::optional<DistanceCertificate> certify_distance_exact(std::span<const Vec3> a,
+                                                          std::span<const Vec3> b,
+                                                          const DistanceHint& hint, int max_steps);
+
+}  // namespace gjklab::exact::detail

@@ -1,0 +1,163 @@
+// The distance certificate decided in floating point (src/exact/filtered_distance.cpp): where it
+// answers, the exact certificate on the same hint answers the same, bit for bit, and the QP
+// agrees; on adversarial hints it never certifies a wrong value; points that tie with the
+// supporting plane are decided exactly, including a tie broken by one ulp.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "../../src/exact/filtered_distance.hpp"
+#include "gjklab/exact/certificate.hpp"
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/geometry/polytope.hpp"
+#include "gjklab/gjk/gjk_distance.hpp"
+
+using namespace gjklab;
+using exact::DistanceHint;
+using exact::detail::certify_distance_exact;
+using exact::detail::certify_distance_filtered;
+
+namespace {
+
+using Cloud = std::vector<Vec3>;
+
+DistanceHint gjk_hint(const Cloud& a, const Cloud& b) {
+  const DistanceResult r = gjk_distance(Polytope(a), Polytope(b));
+  DistanceHint h;
+  for (const SimplexVertex& v : r.simplex.vertices())
+    h.simplex.push_back({v.index_a, v.index_b});
+  return h;
+}
+
+exact::OracleAnswer qp(const Cloud& a, const Cloud& b) {
+  return exact::solve(a, b, {.certificates = false, .hull_vertices = false});
+}
+
+/// n points of a family around `centre`, at scale `size`: on a sphere, on a grid of small
+/// integers (many exact ties with any axis-aligned plane), or flat (all at z = centre.z).
+Cloud cloud(std::mt19937_64& rng, int family, int n, const Vec3& centre, double size) {
+  std::normal_distribution<double> normal(0, 1);
+  std::uniform_int_distribution<int> cell(-2, 2);
+  Cloud out;
+  for (int i = 0; i < n; ++i) {
+    Vec3 p;
+    if (family == 0) p = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    if (family == 1) p = Vec3(cell(rng), cell(rng), cell(rng)) / 2;
+    if (family == 2) p = Vec3(normal(rng), normal(rng), 0);
+    out.push_back(centre + size * p);
+  }
+  return out;
+}
+
+void require_same(const exact::DistanceCertificate& f, const exact::DistanceCertificate& e) {
+  CHECK(f.intersect == e.intersect);
+  CHECK(f.distance == e.distance);
+  CHECK(f.distance_squared == e.distance_squared);
+  CHECK(f.witness_a == e.witness_a);
+  CHECK(f.witness_b == e.witness_b);
+  CHECK(f.feature.simplex == e.feature.simplex);
+  CHECK(f.repair_steps == 0);
+}
+
+}  // namespace
+
+TEST_CASE("filtered distance certificate: the exact certificate's answer on GJK hints",
+          "[certificate][exact]") {
+  std::mt19937_64 rng(20261125);
+  std::uniform_real_distribution<double> gap(-0.6, 0.6);
+  const double scales[] = {1.0, 1e-150, 1e150, 3.0e-7};
+  int filtered = 0, total = 0, plain_filtered = 0, plain_total = 0;
+  for (int round = 0; round < 1200; ++round) {
+    const int family = round % 3;
+    const double size = scales[(round / 3) % 4];
+    const int n = 4 + static_cast<int>(rng() % 60);
+    const Cloud a = cloud(rng, family, n, Vec3::Zero(), size);
+    const Cloud b = cloud(rng, family, n, Vec3(2 + gap(rng), 0.25, 0.1) * size, size);
+    const DistanceHint hint = gjk_hint(a, b);
+    const auto f = certify_distance_filtered(a, b, hint);
+    ++total;
+    if (family == 0 && size == 1.0) ++plain_total;
+    if (!f) continue;
+    ++filtered;
+    if (family == 0 && size == 1.0) ++plain_filtered;
+    INFO("round " << round << ", family " << family << ", scale " << size);
+    const auto e = certify_distance_exact(a, b, hint, 0);
+    REQUIRE(e);  // the same hint proves the answer exactly, with no repair step
+    require_same(*f, *e);
+    if (round % 10 == 0) CHECK(f->distance_squared == qp(a, b).distance_squared);
+  }
+  // The fast path is what makes the oracle cheap: it must answer nearly every plain pair.
+  CHECK(plain_filtered >= plain_total * 95 / 100);
+  CHECK(filtered >= total / 2);
+}
+
+TEST_CASE("filtered distance certificate: adversarial hints never certify a wrong value",
+          "[certificate][exact]") {
+  std::mt19937_64 rng(7);
+  int rejected = 0, certified = 0;
+  for (int round = 0; round < 600; ++round) {
+    const int n = 4 + static_cast<int>(rng() % 12);
+    const Cloud a = cloud(rng, round % 3, n, Vec3::Zero(), 1);
+    const Cloud b = cloud(rng, round % 3, n, Vec3(1.5, 0.2, 0), 1);
+    DistanceHint hint = gjk_hint(a, b);
+    const auto index = [&] { return static_cast<std::int32_t>(rng() % n); };
+    switch (round % 5) {
+      case 0:  // one index replaced
+        hint.simplex[rng() % hint.simplex.size()] = {index(), index()};
+        break;
+      case 1:  // an extra pair
+        if (hint.simplex.size() < 4) hint.simplex.push_back({index(), index()});
+        break;
+      case 2:  // two pairs that share no index: not one connected feature
+        hint.simplex = {{0, 0}, {1, 1}};
+        break;
+      case 3:  // a random simplex
+        hint.simplex.assign(1 + rng() % 3, {0, 0});
+        for (auto& p : hint.simplex)
+          p = {index(), index()};
+        break;
+      default:  // out of range
+        hint.simplex.push_back({n, 0});
+        break;
+    }
+    const auto f = certify_distance_filtered(a, b, hint);
+    if (!f) {
+      ++rejected;
+      continue;
+    }
+    ++certified;
+    const exact::OracleAnswer truth = qp(a, b);
+    INFO("round " << round);
+    CHECK(f->distance_squared == truth.distance_squared);
+    CHECK(f->intersect == truth.intersect);
+  }
+  CHECK(rejected > 0);
+  CHECK(certified > 0);
+}
+
+TEST_CASE("filtered distance certificate: coplanar faces tie and are decided exactly",
+          "[certificate][exact]") {
+  // Two unit cubes face to face at distance 1: four vertices of each lie on its supporting
+  // plane, which the double scan cannot decide.
+  Cloud a, b;
+  for (int i = 0; i < 8; ++i) {
+    a.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    b.emplace_back(2 + (i & 1), (i >> 1) & 1, (i >> 2) & 1);
+  }
+  const DistanceHint vertex_pair{{{1, 0}}};  // a = (1, 0, 0), b = (2, 0, 0)
+  const auto f = certify_distance_filtered(a, b, vertex_pair);
+  REQUIRE(f);
+  CHECK(f->distance == 1.0);
+  CHECK(f->distance_squared == exact::Rational("1", "1"));
+
+  // One vertex of A one ulp beyond the plane: the tie breaks the wrong way, the filtered
+  // certificate declines, and the exact path still finds the distance.
+  a[7] = Vec3(std::nextafter(1.0, 2.0), 1, 1);
+  CHECK_FALSE(certify_distance_filtered(a, b, vertex_pair));
+  const auto c = exact::certify_distance(a, b, vertex_pair);
+  REQUIRE(c);
+  CHECK(c->distance_squared == qp(a, b).distance_squared);
+  CHECK(c->distance < 1.0);
+}
