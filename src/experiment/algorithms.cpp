@@ -74,37 +74,6 @@ Outcome trace_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOpti
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean, trace));
 }
 
-// ---- the GJK distance variants ---------------------------------------------------------
-//
-// Each variant is one core query, untraced and traced; the registry's plain and sphere-swept
-// entries are made from those (swept shapes: the query runs on the cores and its answer is
-// shifted by the radii, see gjk/swept.hpp).
-
-template <class Sub>
-DistanceResult distance_with(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return gjk_distance_with<Sub>(a, b, o.gjk_distance);
-}
-template <class Sub>
-DistanceResult traced_distance_with(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                                    TraceRecorder& trace) {
-  return gjk_distance_with<Sub>(a, b, o.gjk_distance, trace);
-}
-DistanceResult nesterov_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return gjk_nesterov(a, b, o.gjk_nesterov);
-}
-DistanceResult traced_nesterov_distance(const Polytope& a, const Polytope& b,
-                                        const AlgorithmOptions& o, TraceRecorder& trace) {
-  return gjk_nesterov(a, b, o.gjk_nesterov, trace);
-}
-
-DistanceResult polyak_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return gjk_polyak(a, b, o.gjk_distance);
-}
-DistanceResult traced_polyak_distance(const Polytope& a, const Polytope& b,
-                                      const AlgorithmOptions& o, TraceRecorder& trace) {
-  return gjk_polyak(a, b, o.gjk_distance, trace);
-}
-
 // ---- the GJK queries in float and long double (AlgorithmOptions::precision) ---------------
 //
 // The same queries, run on the clouds rounded to T (ScalarCloud<T>); their answers are
@@ -112,7 +81,10 @@ DistanceResult traced_polyak_distance(const Polytope& a, const Polytope& b,
 // distance variants and epa shift the cores' answer by them in double (gjk/swept.hpp), the
 // boolean walks the swept support map in T.
 
-/// A distance variant as a type whose query takes shapes of any precision.
+/// A distance variant as a type whose query takes shapes of any precision, traced or not: the
+/// one core query from which the registry makes its plain, traced, sphere-swept,
+/// other-precision and benchmark forms (swept shapes: the query runs on the cores and its
+/// answer is shifted by the radii, see gjk/swept.hpp).
 template <class Sub>
 struct SubAlgorithmQuery {
   template <class S, class Observer>
@@ -231,66 +203,24 @@ struct EpaIn {
   }
 };
 
-using DistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&, const AlgorithmOptions&);
-using TracedDistanceQuery = DistanceResult (*)(const Polytope&, const Polytope&,
-                                               const AlgorithmOptions&, TraceRecorder&);
-
-template <DistanceQuery Query>
+template <class Core>
 Outcome run_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(Query(a, b, o));
+  return from_distance(Core::run(a, b, o, NoTrace{}));
 }
-template <TracedDistanceQuery Query>
+template <class Core>
 Outcome trace_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
                        TraceRecorder& trace) {
-  return from_distance(Query(a, b, o, trace));
+  return from_distance(Core::run(a, b, o, trace));
 }
-template <DistanceQuery Query>
+template <class Core>
 Outcome run_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
                            const AlgorithmOptions& o) {
-  return from_distance(swept_distance(Query(a, b, o), r));
+  return from_distance(swept_distance(Core::run(a, b, o, NoTrace{}), r));
 }
-template <TracedDistanceQuery Query>
+template <class Core>
 Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
                              const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_distance(swept_distance(Query(a, b, o, trace), r));
-}
-
-/// The registry entry of a GJK distance variant: plain, traced and sphere-swept runs of one
-/// core query.
-template <DistanceQuery Query, TracedDistanceQuery Traced, class AnyPrecision>
-constexpr AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description,
-                                           OptionSchema options) {
-  return {.name = name,
-          .kind = AnswerKind::distance,
-          .description = description,
-          .run = run_distance<Query>,
-          .run_traced = trace_distance<Traced>,
-          .run_swept = run_swept_distance<Query>,
-          .run_swept_traced = trace_swept_distance<Traced>,
-          .run_at_precision = at_precision<DistanceIn<AnyPrecision>::template At>,
-          .options = options};
-}
-
-/// The query of gjk_variant_entry started from a recorded simplex (vertex indices re-read on
-/// the shapes, see gjk_distance_warm_with); swept shapes: on the cores, shifted by the radii.
-template <class Sub>
-Outcome warm_distance_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                           std::span<const SimplexVertex> warm, const AlgorithmOptions& o,
-                           TraceRecorder* trace) {
-  const DistanceResult d = trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
-                                 : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance);
-  return from_distance(r.any() ? swept_distance(d, r) : d);
-}
-
-/// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance (and
-/// warm_start).
-template <class Sub>
-AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
-  AlgorithmInfo entry =
-      gjk_distance_entry<distance_with<Sub>, traced_distance_with<Sub>, SubAlgorithmQuery<Sub>>(
-          name, description, gjk_variant_option_schema());
-  entry.run_warm = warm_distance_with<Sub>;
-  return entry;
+  return from_distance(swept_distance(Core::run(a, b, o, trace), r));
 }
 
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
@@ -407,15 +337,11 @@ std::shared_ptr<const peers::BulletShape> bullet_shape(const Polytope& shape) {
       shape, [](const Polytope& p) { return std::make_shared<const peers::BulletShape>(p); });
 }
 
-Outcome run_bullet_gjk(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
+template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
+Outcome run_bullet(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
   const auto ba = bullet_shape(a);
   const auto bb = bullet_shape(b);
-  return from_penetration(peers::bullet_gjk_query(*ba, *bb), true);
-}
-Outcome run_bullet_epa2(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
-  const auto ba = bullet_shape(a);
-  const auto bb = bullet_shape(b);
-  return from_penetration(peers::bullet_epa2_query(*ba, *bb), true);
+  return from_penetration(Query(*ba, *bb), true);
 }
 #endif
 
@@ -517,6 +443,181 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
   return out;
 }
 
+// ---- benchmark loops (see algorithms.hpp) ------------------------------------------------
+
+/// Adds one query to the tallies; `distance` is added to the distance sum (0 when the answer
+/// has none, or when the shapes intersect, as the registry's Outcome reports it).
+void count_query(BenchTally& t, long long iterations, long long support_calls, bool intersect,
+                 double distance = 0) {
+  ++t.queries;
+  t.iterations += iterations;
+  t.support_calls += support_calls;
+  t.intersections += intersect;
+  t.distance_sum += distance;
+}
+
+// The same tallies as run_bench_loop_via_registry takes from each algorithm's Outcome.
+void tally(BenchTally& t, const BooleanResult& r) {
+  count_query(t, r.iterations, r.support_calls, r.intersect);
+}
+template <class T>
+void tally(BenchTally& t, const DistanceResultT<T>& r) {
+  count_query(t, r.iterations, r.support_calls, r.intersect, static_cast<double>(r.distance));
+}
+void tally(BenchTally& t, const PenetrationResult& r) {
+  count_query(t, r.iterations, r.support_calls, r.intersect, r.intersect ? 0.0 : r.distance);
+}
+template <class T>
+void tally(BenchTally& t, const EpaResultT<T>& r) {
+  // As run_epa: GJK's iterations, then EPA's.
+  count_query(t, r.gjk_iterations + r.iterations, r.support_calls, r.intersect,
+              r.intersect ? 0.0 : static_cast<double>(r.distance));
+}
+void tally(BenchTally& t, const peers::LibccdPenetration& r) {
+  count_query(t, r.iterations, r.support_calls, r.intersect);
+}
+void tally(BenchTally& t, const CertifiedAnswer& r) {
+  count_query(t, r.iterations, r.support_calls, r.answer.intersect,
+              r.answer.intersect ? 0.0 : r.answer.distance);
+}
+void tally(BenchTally& t, const peers::SatResult& r) {
+  count_query(t, r.axes_tested, r.support_calls, r.intersect);
+}
+
+/// One loop shape for every algorithm: `query` is called directly (and inlined where the
+/// compiler can see it), once per pair and repetition.
+template <class Query>
+BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r)
+    for (const BenchPair& p : pairs)
+      tally(t, query(*p.a, *p.b));
+  return t;
+}
+
+template <class Prepare, class Query>
+BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
+                               Query&& query);
+
+/// The loop of a GJK query in float or long double: the shapes rounded to T are prepared once
+/// per polytope (rounded<T>, as the peers' prepared shapes), so the loop times the queries.
+template <class T, class Query>
+BenchTally rounded_bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
+  return prepared_bench_loop(pairs, repetitions, rounded<T>, query);
+}
+
+/// A GJK query's loop in the precision of the options (`query` takes shapes of any scalar).
+template <class Query>
+BenchTally gjk_bench_loop(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps,
+                          Query&& query) {
+  switch (o.precision) {
+    case ScalarPrecision::single_float:
+      return rounded_bench_loop<float>(pairs, reps, query);
+    case ScalarPrecision::long_double:
+      return rounded_bench_loop<long double>(pairs, reps, query);
+    case ScalarPrecision::double_float:
+      break;
+  }
+  return bench_loop(pairs, reps, query);
+}
+
+BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
+    return gjk_intersect(a, b, o.gjk_boolean);
+  });
+}
+
+/// The loop of a GJK distance variant, from its core query.
+template <class Core>
+BenchTally bench_distance(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return gjk_bench_loop(
+      pairs, o, reps, [&](const auto& a, const auto& b) { return Core::run(a, b, o, NoTrace{}); });
+}
+
+BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
+    // Buffers reused across the batch's queries, as run_epa's per thread (one per precision).
+    thread_local EpaPolytopeT<shape_scalar_t<std::remove_cvref_t<decltype(a)>>> workspace;
+    return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
+  });
+}
+
+BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_gjk_intersect(a, b, o.libccd);
+  });
+}
+
+BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_mpr_intersect(a, b, o.libccd);
+  });
+}
+
+BenchTally bench_libccd_gjk_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                                int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_gjk_penetration(a, b, o.libccd);
+  });
+}
+
+BenchTally bench_libccd_mpr_depth(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                                  int reps) {
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return peers::libccd_mpr_penetration(a, b, o.libccd);
+  });
+}
+
+/// The loop of an algorithm that queries shapes prepared for it (`Prepare`: Polytope → shared
+/// pointer to the prepared shape): each pair's prepared shapes are looked up once per call,
+/// before its repetitions, so the timed queries call the library directly, as the other loops.
+template <class Prepare, class Query>
+BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
+                               Query&& query) {
+  using Shape = decltype(prepare(std::declval<const Polytope&>()));
+  std::vector<std::pair<Shape, Shape>> shapes;
+  shapes.reserve(pairs.size());
+  for (const BenchPair& p : pairs)
+    shapes.emplace_back(prepare(*p.a), prepare(*p.b));
+  BenchTally t;
+  for (int r = 0; r < repetitions; ++r)
+    for (const auto& [a, b] : shapes)
+      tally(t, query(*a, *b));
+  return t;
+}
+
+BenchTally bench_gjk_certified(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
+                               int reps) {
+  const exact::OracleOptions options = certified_query_options(o);
+  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
+    return solve_certified(a, b, SweptRadii{}, options);
+  });
+}
+
+BenchTally bench_sat(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return prepared_bench_loop(pairs, reps, sat_shape,
+                             [&](const peers::SatShape& a, const peers::SatShape& b) {
+                               return peers::sat_query(a, b, o.sat);
+                             });
+}
+
+#ifdef GJKLAB_HAVE_FCL
+template <peers::FclSolver Solver>
+BenchTally bench_fcl(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+  return prepared_bench_loop(pairs, reps, fcl_shape,
+                             [&](const peers::FclShape& a, const peers::FclShape& b) {
+                               return peers::fcl_query(a, b, Solver, o.fcl);
+                             });
+}
+#endif
+
+#ifdef GJKLAB_HAVE_BULLET
+template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
+BenchTally bench_bullet(std::span<const BenchPair> pairs, const AlgorithmOptions&, int reps) {
+  return prepared_bench_loop(pairs, reps, bullet_shape, Query);
+}
+#endif
+
 using SweptRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
                              const AlgorithmOptions&);
 
@@ -527,38 +628,170 @@ Outcome at_zero_radii(const Polytope& a, const Polytope& b, const AlgorithmOptio
   return Run(a, b, SweptRadii{}, o);
 }
 
-// The optional peers (FCL, Bullet) are listed only when they were built.
-// The registry: one entry per algorithm, each built from its query (and the traced, swept and
-// other-precision forms where it has them) and its option schema. Built on first use: the
-// schemas live in another translation unit, so the table is not a compile-time constant and
-// must not depend on the order of static initialisation.
+// ---- the registry entries ------------------------------------------------------------------
+//
+// One function per algorithm (or per group of algorithms made the same way) builds its entry
+// from its query: the plain, traced, sphere-swept, other-precision, warm-started and benchmark
+// forms where it has them, and its option schema. registry() lists them, one line each.
+
+/// A GJK distance variant: every form from one core query (a type whose run() takes shapes of
+/// any precision, traced or not; see SubAlgorithmQuery).
+template <class Core>
+AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description,
+                                 OptionSchema options) {
+  return {.name = name,
+          .kind = AnswerKind::distance,
+          .description = description,
+          .run = run_distance<Core>,
+          .run_traced = trace_distance<Core>,
+          .run_swept = run_swept_distance<Core>,
+          .run_swept_traced = trace_swept_distance<Core>,
+          .run_at_precision = at_precision<DistanceIn<Core>::template At>,
+          .options = options,
+          .bench = bench_distance<Core>};
+}
+
+/// The query of gjk_variant_entry started from a recorded simplex (vertex indices re-read on
+/// the shapes, see gjk_distance_warm_with); swept shapes: on the cores, shifted by the radii.
+template <class Sub>
+Outcome warm_distance_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                           std::span<const SimplexVertex> warm, const AlgorithmOptions& o,
+                           TraceRecorder* trace) {
+  const DistanceResult d = trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
+                                 : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance);
+  return from_distance(r.any() ? swept_distance(d, r) : d);
+}
+
+/// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance (and
+/// warm_start).
+template <class Sub>
+AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
+  AlgorithmInfo entry =
+      gjk_distance_entry<SubAlgorithmQuery<Sub>>(name, description, gjk_variant_option_schema());
+  entry.run_warm = warm_distance_with<Sub>;
+  return entry;
+}
+
+AlgorithmInfo gjk_bool_entry() {
+  return {.name = "gjk-bool",
+          .kind = AnswerKind::boolean,
+          .description = "boolean GJK walking a simplex with triple-product directions",
+          .run = run_gjk_bool,
+          .run_traced = trace_gjk_bool,
+          .run_swept = swept_gjk_bool,
+          .run_swept_traced = swept_trace_gjk_bool,
+          .run_at_precision = at_precision<GjkBoolIn>,
+          .options = gjk_boolean_option_schema(),
+          .bench = bench_gjk_bool};
+}
+
+AlgorithmInfo epa_entry() {
+  return {
+      .name = "epa",
+      .kind = AnswerKind::distance,
+      .description = "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
+      .run = run_epa,
+      .depth = true,
+      .run_swept = swept_epa,
+      .run_at_precision = at_precision<EpaIn>,
+      .options = epa_option_schema(),
+      .bench = bench_epa};
+}
+
+AlgorithmInfo sat_entry() {
+  return {.name = "sat",
+          .kind = AnswerKind::boolean,
+          .description =
+              "separating axis test on exact hull features (face normals, edge cross "
+              "products) with the minimum-overlap depth",
+          .run = run_sat,
+          .depth = true,
+          .options = sat_option_schema(),
+          .bench = bench_sat};
+}
+
+/// A libccd query: its adapter takes the radii itself (Run), so the plain run is Run at zero
+/// radii; `depth` for the penetration queries.
+template <SweptRun Run>
+AlgorithmInfo libccd_entry(std::string_view name, std::string_view description, bool depth,
+                           OptionSchema options, BenchLoop bench) {
+  return {.name = name,
+          .kind = AnswerKind::boolean,
+          .description = description,
+          .run = at_zero_radii<Run>,
+          .peer = true,
+          .depth = depth,
+          .run_swept = Run,
+          .options = options,
+          .bench = bench};
+}
+
+#ifdef GJKLAB_HAVE_FCL
+/// An FCL solver on fcl::Convex (polytopes only).
+template <peers::FclSolver Solver>
+AlgorithmInfo fcl_entry(std::string_view name, std::string_view description) {
+  return {.name = name,
+          .kind = AnswerKind::distance,
+          .description = description,
+          .run = Solver == peers::FclSolver::libccd ? run_fcl_libccd : run_fcl_indep,
+          .peer = true,
+          .depth = true,
+          .options = fcl_option_schema(),
+          .bench = bench_fcl<Solver>};
+}
+#endif
+
+#ifdef GJKLAB_HAVE_BULLET
+/// A Bullet query on its own convex hull shape (polytopes only, no options).
+template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
+AlgorithmInfo bullet_entry(std::string_view name, std::string_view description) {
+  return {.name = name,
+          .kind = AnswerKind::distance,
+          .description = description,
+          .run = run_bullet<Query>,
+          .peer = true,
+          .depth = true,
+          .bench = bench_bullet<Query>};
+}
+#endif
+
+AlgorithmInfo gjk_certified_entry() {
+  return {.name = "gjk-certified",
+          .kind = AnswerKind::distance,
+          .description =
+              "gjk-johnson and EPA, verified by exact certificates (CGAL's QP as "
+              "fallback): exact answers",
+          .run = at_zero_radii<swept_gjk_certified>,
+          .run_swept = swept_gjk_certified,
+          .bench = bench_gjk_certified};
+}
+
+/// The oracle: minutes per query on large clouds, so never in a timed loop (no bench).
+AlgorithmInfo exact_entry() {
+  return {.name = "exact",
+          .kind = AnswerKind::exact,
+          .description =
+              "exact answer in rational arithmetic: certified from gjklab's own "
+              "GJK/EPA, CGAL's QP where no certificate holds",
+          .run = at_zero_radii<swept_exact>,
+          .depth = true,
+          .run_swept = swept_exact,
+          .options = exact_option_schema()};
+}
+
+// The registry: one line per algorithm, in the default order of outputs; the optional peers
+// (FCL, Bullet) are listed only when they were built. Built on first use: the schemas live in
+// another translation unit, so the table is not a compile-time constant and must not depend on
+// the order of static initialisation.
 const auto& registry() {
   static const std::array entries = {
-      AlgorithmInfo{.name = "gjk-bool",
-                    .kind = AnswerKind::boolean,
-                    .description = "boolean GJK walking a simplex with triple-product directions",
-                    .run = run_gjk_bool,
-                    .run_traced = trace_gjk_bool,
-                    .run_swept = swept_gjk_bool,
-                    .run_swept_traced = swept_trace_gjk_bool,
-                    .run_at_precision = at_precision<GjkBoolIn>,
-                    .options = gjk_boolean_option_schema()},
+      gjk_bool_entry(),
       gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
                                              "GJK distance with Johnson's distance sub-algorithm"),
-      AlgorithmInfo{.name = "libccd-gjk",
-                    .kind = AnswerKind::boolean,
-                    .description = "libccd's ccdGJKIntersect",
-                    .run = at_zero_radii<swept_libccd_gjk>,
-                    .peer = true,
-                    .run_swept = swept_libccd_gjk,
-                    .options = libccd_option_schema()},
-      AlgorithmInfo{.name = "libccd-mpr",
-                    .kind = AnswerKind::boolean,
-                    .description = "libccd's ccdMPRIntersect",
-                    .run = at_zero_radii<swept_libccd_mpr>,
-                    .peer = true,
-                    .run_swept = swept_libccd_mpr,
-                    .options = libccd_option_schema()},
+      libccd_entry<swept_libccd_gjk>("libccd-gjk", "libccd's ccdGJKIntersect", false,
+                                     libccd_option_schema(), bench_libccd_gjk),
+      libccd_entry<swept_libccd_mpr>("libccd-mpr", "libccd's ccdMPRIntersect", false,
+                                     libccd_option_schema(), bench_libccd_mpr),
       gjk_variant_entry<JohnsonBackupSubAlgorithm>(
           "gjk-johnson-backup",
           "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
@@ -566,94 +799,36 @@ const auto& registry() {
           "gjk-sv", "GJK distance with the signed-volumes sub-algorithm (Montanari et al. 2017)"),
       gjk_variant_entry<VoronoiSubAlgorithm>(
           "gjk-voronoi", "GJK distance with Voronoi-region tests (Ericson 2005)"),
-      gjk_distance_entry<nesterov_distance, traced_nesterov_distance, NesterovQuery>(
+      gjk_distance_entry<NesterovQuery>(
           "gjk-nesterov", "Nesterov-accelerated GJK distance (Montaut et al. 2022), signed volumes",
           gjk_nesterov_option_schema()),
-      gjk_distance_entry<polyak_distance, traced_polyak_distance, PolyakQuery>(
+      gjk_distance_entry<PolyakQuery>(
           "gjk-polyak",
           "Polyak-accelerated GJK distance (GJK++, Montaut et al. 2024), signed volumes",
           gjk_distance_option_schema()),
-      AlgorithmInfo{
-          .name = "epa",
-          .kind = AnswerKind::distance,
-          .description =
-              "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
-          .run = run_epa,
-          .depth = true,
-          .run_swept = swept_epa,
-          .run_at_precision = at_precision<EpaIn>,
-          .options = epa_option_schema()},
-      AlgorithmInfo{.name = "sat",
-                    .kind = AnswerKind::boolean,
-                    .description = "separating axis test on exact hull features (face normals, "
-                                   "edge cross products) with the minimum-overlap depth",
-                    .run = run_sat,
-                    .depth = true,
-                    .options = sat_option_schema()},
-      AlgorithmInfo{
-          .name = "libccd-gjk-epa",
-          .kind = AnswerKind::boolean,
-          .description = "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
-          .run = at_zero_radii<swept_libccd_gjk_epa>,
-          .peer = true,
-          .depth = true,
-          .run_swept = swept_libccd_gjk_epa,
-          .options = libccd_depth_option_schema()},
-      AlgorithmInfo{.name = "libccd-mpr-depth",
-                    .kind = AnswerKind::boolean,
-                    .description = "libccd's ccdMPRPenetration",
-                    .run = at_zero_radii<swept_libccd_mpr_depth>,
-                    .peer = true,
-                    .depth = true,
-                    .run_swept = swept_libccd_mpr_depth,
-                    .options = libccd_depth_option_schema()},
+      epa_entry(),
+      sat_entry(),
+      libccd_entry<swept_libccd_gjk_epa>(
+          "libccd-gjk-epa", "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
+          true, libccd_depth_option_schema(), bench_libccd_gjk_epa),
+      libccd_entry<swept_libccd_mpr_depth>("libccd-mpr-depth", "libccd's ccdMPRPenetration", true,
+                                           libccd_depth_option_schema(), bench_libccd_mpr_depth),
 #ifdef GJKLAB_HAVE_FCL
-      AlgorithmInfo{.name = "fcl-libccd",
-                    .kind = AnswerKind::distance,
-                    .description = "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; "
-                                   "distance: GJK)",
-                    .run = run_fcl_libccd,
-                    .peer = true,
-                    .depth = true,
-                    .options = fcl_option_schema()},
-      AlgorithmInfo{.name = "fcl-indep",
-                    .kind = AnswerKind::distance,
-                    .description = "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)",
-                    .run = run_fcl_indep,
-                    .peer = true,
-                    .depth = true,
-                    .options = fcl_option_schema()},
+      fcl_entry<peers::FclSolver::libccd>(
+          "fcl-libccd",
+          "FCL's libccd-based GJK solver on fcl::Convex (collide: MPR; distance: GJK)"),
+      fcl_entry<peers::FclSolver::indep>(
+          "fcl-indep", "FCL's own GJK/EPA solver on fcl::Convex (collide and distance)"),
 #endif
 #ifdef GJKLAB_HAVE_BULLET
-      AlgorithmInfo{.name = "bullet-gjk",
-                    .kind = AnswerKind::distance,
-                    .description = "Bullet's btGjkPairDetector (Voronoi simplex solver, GJK-EPA "
-                                   "penetration), margins 0",
-                    .run = run_bullet_gjk,
-                    .peer = true,
-                    .depth = true},
-      AlgorithmInfo{
-          .name = "bullet-epa2",
-          .kind = AnswerKind::distance,
-          .description = "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0",
-          .run = run_bullet_epa2,
-          .peer = true,
-          .depth = true},
+      bullet_entry<peers::bullet_gjk_query>(
+          "bullet-gjk",
+          "Bullet's btGjkPairDetector (Voronoi simplex solver, GJK-EPA penetration), margins 0"),
+      bullet_entry<peers::bullet_epa2_query>(
+          "bullet-epa2", "Bullet's btGjkEpaSolver2 (Distance, then Penetration), margins 0"),
 #endif
-      AlgorithmInfo{.name = "gjk-certified",
-                    .kind = AnswerKind::distance,
-                    .description = "gjk-johnson and EPA, verified by exact certificates (CGAL's QP "
-                                   "as fallback): exact answers",
-                    .run = at_zero_radii<swept_gjk_certified>,
-                    .run_swept = swept_gjk_certified},
-      AlgorithmInfo{.name = "exact",
-                    .kind = AnswerKind::exact,
-                    .description = "exact answer in rational arithmetic: certified from gjklab's "
-                                   "own GJK/EPA, CGAL's QP where no certificate holds",
-                    .run = at_zero_radii<swept_exact>,
-                    .depth = true,
-                    .run_swept = swept_exact,
-                    .options = exact_option_schema()},
+      gjk_certified_entry(),
+      exact_entry(),
   };
   return entries;
 }
@@ -763,232 +938,9 @@ std::string algorithm_names() {
 
 namespace gjklab::experiment {
 
-namespace {
-
-/// Adds one query to the tallies; `distance` is added to the distance sum (0 when the answer
-/// has none, or when the shapes intersect, as the registry's Outcome reports it).
-void count_query(BenchTally& t, long long iterations, long long support_calls, bool intersect,
-                 double distance = 0) {
-  ++t.queries;
-  t.iterations += iterations;
-  t.support_calls += support_calls;
-  t.intersections += intersect;
-  t.distance_sum += distance;
-}
-
-// The same tallies as run_bench_loop_via_registry takes from each algorithm's Outcome.
-void tally(BenchTally& t, const BooleanResult& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect);
-}
-template <class T>
-void tally(BenchTally& t, const DistanceResultT<T>& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect, static_cast<double>(r.distance));
-}
-void tally(BenchTally& t, const PenetrationResult& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect, r.intersect ? 0.0 : r.distance);
-}
-template <class T>
-void tally(BenchTally& t, const EpaResultT<T>& r) {
-  // As run_epa: GJK's iterations, then EPA's.
-  count_query(t, r.gjk_iterations + r.iterations, r.support_calls, r.intersect,
-              r.intersect ? 0.0 : static_cast<double>(r.distance));
-}
-void tally(BenchTally& t, const peers::LibccdPenetration& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect);
-}
-void tally(BenchTally& t, const CertifiedAnswer& r) {
-  count_query(t, r.iterations, r.support_calls, r.answer.intersect,
-              r.answer.intersect ? 0.0 : r.answer.distance);
-}
-void tally(BenchTally& t, const peers::SatResult& r) {
-  count_query(t, r.axes_tested, r.support_calls, r.intersect);
-}
-
-/// One loop shape for every algorithm: `query` is called directly (and inlined where the
-/// compiler can see it), once per pair and repetition.
-template <class Query>
-BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
-  BenchTally t;
-  for (int r = 0; r < repetitions; ++r)
-    for (const BenchPair& p : pairs)
-      tally(t, query(*p.a, *p.b));
-  return t;
-}
-
-template <class Prepare, class Query>
-BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
-                               Query&& query);
-
-/// The loop of a GJK query in float or long double: the shapes rounded to T are prepared once
-/// per polytope (rounded<T>, as the peers' prepared shapes), so the loop times the queries.
-template <class T, class Query>
-BenchTally rounded_bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
-  return prepared_bench_loop(pairs, repetitions, rounded<T>, query);
-}
-
-/// A GJK query's loop in the precision of the options (`query` takes shapes of any scalar).
-template <class Query>
-BenchTally gjk_bench_loop(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps,
-                          Query&& query) {
-  switch (o.precision) {
-    case ScalarPrecision::single_float:
-      return rounded_bench_loop<float>(pairs, reps, query);
-    case ScalarPrecision::long_double:
-      return rounded_bench_loop<long double>(pairs, reps, query);
-    case ScalarPrecision::double_float:
-      break;
-  }
-  return bench_loop(pairs, reps, query);
-}
-
-BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    return gjk_intersect(a, b, o.gjk_boolean);
-  });
-}
-
-template <class Sub>
-BenchTally bench_gjk_distance(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                              int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    return gjk_distance_with<Sub>(a, b, o.gjk_distance);
-  });
-}
-
-BenchTally bench_gjk_nesterov(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                              int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    return gjk_nesterov(a, b, o.gjk_nesterov);
-  });
-}
-
-BenchTally bench_gjk_polyak(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    return gjk_polyak(a, b, o.gjk_distance);
-  });
-}
-
-BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    // Buffers reused across the batch's queries, as run_epa's per thread (one per precision).
-    thread_local EpaPolytopeT<shape_scalar_t<std::remove_cvref_t<decltype(a)>>> workspace;
-    return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
-  });
-}
-
-BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_gjk_intersect(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_mpr_intersect(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_gjk_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                                int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_gjk_penetration(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_mpr_depth(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                                  int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_mpr_penetration(a, b, o.libccd);
-  });
-}
-
-/// The loop of an algorithm that queries shapes prepared for it (`Prepare`: Polytope → shared
-/// pointer to the prepared shape): each pair's prepared shapes are looked up once per call,
-/// before its repetitions, so the timed queries call the library directly, as the other loops.
-template <class Prepare, class Query>
-BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
-                               Query&& query) {
-  using Shape = decltype(prepare(std::declval<const Polytope&>()));
-  std::vector<std::pair<Shape, Shape>> shapes;
-  shapes.reserve(pairs.size());
-  for (const BenchPair& p : pairs)
-    shapes.emplace_back(prepare(*p.a), prepare(*p.b));
-  BenchTally t;
-  for (int r = 0; r < repetitions; ++r)
-    for (const auto& [a, b] : shapes)
-      tally(t, query(*a, *b));
-  return t;
-}
-
-BenchTally bench_gjk_certified(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                               int reps) {
-  const exact::OracleOptions options = certified_query_options(o);
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return solve_certified(a, b, SweptRadii{}, options);
-  });
-}
-
-BenchTally bench_sat(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return prepared_bench_loop(pairs, reps, sat_shape,
-                             [&](const peers::SatShape& a, const peers::SatShape& b) {
-                               return peers::sat_query(a, b, o.sat);
-                             });
-}
-
-#ifdef GJKLAB_HAVE_FCL
-template <peers::FclSolver Solver>
-BenchTally bench_fcl(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return prepared_bench_loop(pairs, reps, fcl_shape,
-                             [&](const peers::FclShape& a, const peers::FclShape& b) {
-                               return peers::fcl_query(a, b, Solver, o.fcl);
-                             });
-}
-#endif
-
-#ifdef GJKLAB_HAVE_BULLET
-template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
-BenchTally bench_bullet(std::span<const BenchPair> pairs, const AlgorithmOptions&, int reps) {
-  return prepared_bench_loop(pairs, reps, bullet_shape, Query);
-}
-#endif
-
-struct NamedBenchLoop {
-  std::string_view name;
-  BenchLoop loop;
-};
-
-// Every registry algorithm but `exact` (minutes per query on large clouds) has a direct loop.
-constexpr std::array kBenchLoops = {
-    NamedBenchLoop{"gjk-bool", bench_gjk_bool},
-    NamedBenchLoop{"gjk-johnson", bench_gjk_distance<JohnsonSubAlgorithm>},
-    NamedBenchLoop{"gjk-johnson-backup", bench_gjk_distance<JohnsonBackupSubAlgorithm>},
-    NamedBenchLoop{"gjk-sv", bench_gjk_distance<SignedVolumesSubAlgorithm>},
-    NamedBenchLoop{"gjk-voronoi", bench_gjk_distance<VoronoiSubAlgorithm>},
-    NamedBenchLoop{"gjk-nesterov", bench_gjk_nesterov},
-    NamedBenchLoop{"gjk-polyak", bench_gjk_polyak},
-    NamedBenchLoop{"epa", bench_epa},
-    NamedBenchLoop{"sat", bench_sat},
-    NamedBenchLoop{"libccd-gjk", bench_libccd_gjk},
-    NamedBenchLoop{"libccd-mpr", bench_libccd_mpr},
-    NamedBenchLoop{"libccd-gjk-epa", bench_libccd_gjk_epa},
-    NamedBenchLoop{"libccd-mpr-depth", bench_libccd_mpr_depth},
-    NamedBenchLoop{"gjk-certified", bench_gjk_certified},
-#ifdef GJKLAB_HAVE_FCL
-    NamedBenchLoop{"fcl-libccd", bench_fcl<peers::FclSolver::libccd>},
-    NamedBenchLoop{"fcl-indep", bench_fcl<peers::FclSolver::indep>},
-#endif
-#ifdef GJKLAB_HAVE_BULLET
-    NamedBenchLoop{"bullet-gjk", bench_bullet<peers::bullet_gjk_query>},
-    NamedBenchLoop{"bullet-epa2", bench_bullet<peers::bullet_epa2_query>},
-#endif
-};
-
-}  // namespace
-
 BenchLoop find_bench_loop(std::string_view name) {
-  for (const NamedBenchLoop& l : kBenchLoops)
-    if (l.name == name) return l.loop;
-  return nullptr;
+  const AlgorithmInfo* algorithm = find_algorithm(name);
+  return algorithm ? algorithm->bench : nullptr;
 }
 
 BenchTally run_bench_loop_via_registry(const AlgorithmInfo& algorithm,

@@ -71,6 +71,33 @@ struct Outcome {
   std::optional<exact::OracleAnswer> exact;  ///< the full exact answer (algorithm `exact` only)
 };
 
+// ---- benchmark loops ---------------------------------------------------------------------
+//
+// `gjklab bench` times queries, not the registry's wrapping of them: a benchmark loop calls an
+// algorithm's query function directly, many times, with no Outcome, no allocation and no
+// exception handling per call, and tallies the answers so that the compiler must compute them.
+// Every loop has the same shape (repetitions × pairs, one direct call each), which keeps the
+// algorithms comparable.
+
+/// Two shapes of one query.
+struct BenchPair {
+  const Polytope* a = nullptr;
+  const Polytope* b = nullptr;
+};
+
+/// Sums over every query a benchmark loop made.
+struct BenchTally {
+  long long queries = 0;
+  long long iterations = 0;
+  long long support_calls = 0;
+  long long intersections = 0;
+  double distance_sum = 0;  ///< distance algorithms only
+};
+
+/// Runs the algorithm `repetitions` times over `pairs` (in order, repetition by repetition).
+using BenchLoop = BenchTally (*)(std::span<const BenchPair> pairs, const AlgorithmOptions& options,
+                                 int repetitions);
+
 enum class AnswerKind { boolean, distance, exact };
 
 struct AlgorithmInfo {
@@ -111,6 +138,9 @@ struct AlgorithmInfo {
   /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
   /// archive's description and replay all follow from it.
   OptionSchema options = {};
+  /// The benchmark's direct loop of the query (see BenchLoop); nullptr when it has none (the
+  /// oracle: minutes per query on large clouds), and the benchmark then loops over run.
+  BenchLoop bench = nullptr;
 };
 
 /// Whether the algorithm can run in another precision than double (options.precision).
@@ -142,35 +172,10 @@ const AlgorithmInfo* find_algorithm(std::string_view name);
 /// "gjk-bool, gjk-johnson, …": the valid names, for error messages.
 std::string algorithm_names();
 
-// ---- benchmark loops ---------------------------------------------------------------------
-//
-// `gjklab bench` times queries, not the registry's wrapping of them: a benchmark loop calls an
-// algorithm's query function directly, many times, with no Outcome, no allocation and no
-// exception handling per call, and tallies the answers so that the compiler must compute them.
-// Every loop has the same shape (repetitions × pairs, one direct call each), which keeps the
-// algorithms comparable.
+// ---- benchmark loops (the types above; the lookups here) ----------------------------------
 
-/// Two shapes of one query.
-struct BenchPair {
-  const Polytope* a = nullptr;
-  const Polytope* b = nullptr;
-};
-
-/// Sums over every query a benchmark loop made.
-struct BenchTally {
-  long long queries = 0;
-  long long iterations = 0;
-  long long support_calls = 0;
-  long long intersections = 0;
-  double distance_sum = 0;  ///< distance algorithms only
-};
-
-/// Runs the algorithm `repetitions` times over `pairs` (in order, repetition by repetition).
-using BenchLoop = BenchTally (*)(std::span<const BenchPair> pairs, const AlgorithmOptions& options,
-                                 int repetitions);
-
-/// The algorithm's direct benchmark loop, or nullptr if it has none (the benchmark then loops
-/// over AlgorithmInfo::run and says so).
+/// The algorithm's direct benchmark loop (AlgorithmInfo::bench), or nullptr if it has none or
+/// there is no such algorithm (the benchmark then loops over AlgorithmInfo::run and says so).
 BenchLoop find_bench_loop(std::string_view name);
 
 /// A loop over AlgorithmInfo::run, for algorithms without a direct loop.
