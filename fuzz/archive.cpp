@@ -21,6 +21,7 @@
 // one options list per algorithm and one record per algorithm in every result; the inspect
 // summary of it is printed without error.
 #include <pthread.h>
+#include <sanitizer/allocator_interface.h>
 #include <sanitizer/asan_interface.h>
 #include <sanitizer/common_interface_defs.h>
 #include <signal.h>
@@ -124,6 +125,11 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = gjklab::fuzz::write_scratch_file("run.h5", std::span(data, size));
+  // The fork copies the page tables of every page this process holds, and most of them are
+  // ASan's quarantine of freed blocks (up to 256 MB): 340 MB resident without this, 80 MB with
+  // it, and half the CPU time per input (measured on 200 inputs: 6.6 s, 3.3 s). A use after
+  // free within one input is still caught: the quarantine fills again during the input.
+  __sanitizer_purge_allocator();
   try {
     check_archive(experiment::read_archive_isolated(path));
   } catch (const experiment::ArchiveError&) {
