@@ -368,7 +368,7 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
 
   const Table n = root.child("narrow_phase");
-  n.allow_only({"algorithm", "warm_start", "measure_cold", "max_iterations"});
+  n.allow_only({"algorithm", "warm_start", "measure_cold", "max_iterations", "threads"});
   const std::string name = n.string("algorithm", "gjk-johnson");
   const auto a = scene::narrow_algorithm_from_string(name);
   if (!a)
@@ -378,6 +378,7 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.algorithm = *a;
   s.warm_start = n.boolean("warm_start", true);
   s.measure_cold = n.boolean("measure_cold", false);
+  s.threads = static_cast<int>(n.integer("threads", 1, 1, 1024));
   s.gjk.max_iterations =
       static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
 }

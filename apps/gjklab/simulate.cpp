@@ -845,6 +845,7 @@ int resume(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
     p.done = read_number_attribute<std::int64_t>(h, file.id, "frames");
     p.target = read_state(h, file.id, *s.world);
   }
+  if (args.threads > 0) s.world->set_threads(args.threads);
   p.checkpoint = args.checkpoint;
   p.stop_after = args.stop_after;
   return run_and_write(s, path, scene_path, r, p, out, err);
@@ -871,6 +872,10 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--stop-after", args.stop_after,
                   "stop after N frames, leaving a checkpoint to --resume (runs in parts)")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{100'000'000}));
+  cmd->add_option("--threads", args.threads,
+                  "narrow-phase threads (default: the file's [narrow_phase] threads, else 1; "
+                  "the archive is the same for any count)")
+      ->check(CLI::Range(1, 1024));
   return cmd;
 }
 
@@ -890,6 +895,7 @@ int run_simulate_command(const SimulateArgs& args, std::ostream& out, std::ostre
       return resume(args, out, err);
     }
     SceneSetup s = load_scene(args.scene);
+    if (args.threads > 0) s.world->set_threads(args.threads);
     const std::string path = args.output.empty() ? "results/" + s.name + ".h5" : args.output;
     if (fs::exists(path) && !args.force) {
       err << "gjklab simulate: " << path << " exists (use --force to overwrite)\n";

@@ -23,6 +23,7 @@ struct SimulateArgs {
   /// Frames between checkpoints (FILE.h5.tmp rewritten with the world's state; 0: none).
   std::int64_t checkpoint = 500;
   std::int64_t stop_after = 0;  ///< stop after this many frames (0: run to the end)
+  int threads = 0;              ///< narrow-phase threads (0: the file's [narrow_phase] threads)
 };
 
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
@@ -205,6 +206,7 @@ void check_settings(const WorldSettings& s) {
   require(s.baumgarte >= 0 && s.baumgarte <= 1, "baumgarte must be in [0, 1]");
   require(s.restitution_threshold >= 0 && std::isfinite(s.restitution_threshold),
           "restitution_threshold must be finite and ≥ 0");
+  require(s.threads >= 1 && s.threads <= 1024, "threads must be in [1, 1024]");
 }
 
 }  // namespace
@@ -212,6 +214,13 @@ void check_settings(const WorldSettings& s) {
 World::World(WorldSettings settings)
     : settings_(settings), broad_(settings.broad_phase, settings.grid_cell_size) {
   check_settings(settings_);
+}
+
+void World::set_threads(int threads) {
+  WorldSettings s = settings_;
+  s.threads = threads;
+  check_settings(s);
+  settings_.threads = threads;
 }
 
 std::uint32_t World::add(RigidBody body) {
@@ -252,18 +261,32 @@ const Polytope& World::world_hull(std::uint32_t i) {
   return *world_hulls_[i];
 }
 
-void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepStats& stats,
-                    double& iterations, double& iterations_cold) {
-  const Polytope& pa = world_hull(ia);
-  const Polytope& pb = world_hull(ib);
+struct World::PairOutcome {
+  std::uint32_t a = 0, b = 0;
+  int iterations = 0;
+  int iterations_cold = 0;  ///< measure_cold only
+  std::size_t failed = 0;   ///< GJK and EPA stops other than converged
+  bool epa = false;
+  QueryRecord query;                  ///< filled when the step records queries
+  std::vector<ManifoldPoint> points;  ///< empty: no contact
+  Vec3 normal = Vec3::UnitZ();
+};
+
+void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
+                    PairOutcome& out) const {
+  const Polytope& pa = *world_hulls_[ia];
+  const Polytope& pb = *world_hulls_[ib];
   const std::span<const SimplexVertex> warm = settings_.warm_start
-                                                  ? std::span<const SimplexVertex>(cache.simplex)
+                                                  ? std::span<const SimplexVertex>(simplex)
                                                   : std::span<const SimplexVertex>();
   const DistanceResult r = run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
-  ++stats.narrow_queries;
-  iterations += r.iterations;
+  out.a = ia;
+  out.b = ib;
+  out.iterations = r.iterations;
   if (query_log_) {
-    QueryRecord q{ia, ib};
+    QueryRecord& q = out.query;
+    q.a = ia;
+    q.b = ib;
     q.warm_size = static_cast<int>(warm.size());
     for (std::size_t k = 0; k < warm.size() && k < 4; ++k) {
       q.warm_index_a[k] = warm[k].index_a;
@@ -272,13 +295,12 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
     q.iterations = r.iterations;
     q.intersect = r.intersect;
     q.distance = r.distance;
-    query_log_->push_back(q);
   }
   if (settings_.measure_cold)
-    iterations_cold += run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
-  if (r.termination != Termination::converged) ++stats.failed_queries;
+    out.iterations_cold = run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
+  if (r.termination != Termination::converged) ++out.failed;
   const auto kept = r.simplex.vertices();
-  cache.simplex.assign(kept.begin(), kept.end());
+  simplex.assign(kept.begin(), kept.end());
 
   // Contacts within the margin plus the distance the pair can close in this step; those
   // beyond the margin are speculative (negative depth, see the solver's target). Swept shapes:
@@ -286,17 +308,14 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
   const double margin = settings_.contact_margin + sweep_distance(ia) + sweep_distance(ib);
   const double ra = bodies_[ia].shape->swept_radius, rb = bodies_[ib].shape->swept_radius;
   const double radii = ra + rb;
-  if (!r.intersect && !(r.distance < margin + radii)) {
-    cache.points.clear();
-    return;
-  }
+  if (!r.intersect && !(r.distance < margin + radii)) return;
   Vec3 normal;
   ManifoldPoint single;
   if (r.intersect) {
     EpaPolytope ws;
     const EpaResult e = epa_from_gjk(pa, pb, r, EpaOptions{}, ws);
-    ++stats.epa_queries;
-    if (e.termination != Termination::converged) ++stats.failed_queries;
+    out.epa = true;
+    if (e.termination != Termination::converged) ++out.failed;
     normal = e.normal;
     single = {0.5 * (e.witness_a + e.witness_b) + 0.5 * (ra - rb) * normal, e.depth + radii};
   } else {
@@ -309,27 +328,39 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepSt
     if (radii > 0 && n > 0) single.point += 0.5 * (ra - rb) * normal;
   }
   if (!normal.allFinite() || !(normal.norm() > 0) || !single.point.allFinite() ||
-      !std::isfinite(single.depth)) {
-    cache.points.clear();  // a failed query gives no contact rather than a NaN impulse
+      !std::isfinite(single.depth))
+    return;  // a failed query gives no contact rather than a NaN impulse
+  normal.normalize();
+  out.points = clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape,
+                             pb, bodies_[ib].pose.rotation, normal, margin);
+  if (out.points.empty()) out.points.push_back(single);
+  out.normal = normal;
+}
+
+void World::merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
+                  double& iterations_cold) {
+  ++stats.narrow_queries;
+  iterations += out.iterations;
+  iterations_cold += out.iterations_cold;
+  stats.failed_queries += out.failed;
+  stats.epa_queries += out.epa ? 1 : 0;
+  if (query_log_) query_log_->push_back(out.query);
+  if (out.points.empty()) {
+    cache.points.clear();
     return;
   }
-  normal.normalize();
-  std::vector<ManifoldPoint> pts =
-      clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape, pb,
-                    bodies_[ib].pose.rotation, normal, margin);
-  if (pts.empty()) pts.push_back(single);
   const std::size_t first = contacts_.size();
-  for (const ManifoldPoint& m : pts) {
+  for (const ManifoldPoint& m : out.points) {
     Contact c;
-    c.a = ia;
-    c.b = ib;
+    c.a = out.a;
+    c.b = out.b;
     c.point = m.point;
-    c.normal = normal;
+    c.normal = out.normal;
     c.depth = m.depth;
     contacts_.push_back(c);
   }
-  warm_start_impulses(first, pts.size(), cache);
-  pair_ranges_.push_back({pair_key(ia, ib), {first, pts.size()}});
+  warm_start_impulses(first, out.points.size(), cache);
+  pair_ranges_.push_back({pair_key(out.a, out.b), {first, out.points.size()}});
 }
 
 void World::warm_start_impulses(std::size_t first, std::size_t count, const PairCache& cache) {
@@ -407,11 +438,39 @@ void World::narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats) {
   contacts_.clear();
   pair_ranges_.clear();
   double iterations = 0, iterations_cold = 0;
+  // Serial preparation: every pair's cache entry and both world hulls exist before the
+  // queries, which then only read shared state (and write their own pair's simplex).
+  std::vector<PairCache*> caches;
+  caches.reserve(pairs.size());
   for (const auto& [i, j] : pairs) {
     PairCache& cache = cache_[pair_key(i, j)];
     cache.step = step_count_ + 1;
-    collide(i, j, cache, stats, iterations, iterations_cold);
+    caches.push_back(&cache);
+    world_hull(i);
+    world_hull(j);
   }
+  std::vector<PairOutcome> outcomes(pairs.size());
+  auto run = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+      collide(pairs[k].first, pairs[k].second, caches[k]->simplex, outcomes[k]);
+  };
+  const std::size_t n_threads =
+      std::min<std::size_t>(static_cast<std::size_t>(settings_.threads), pairs.size() / 16 + 1);
+  if (n_threads <= 1) {
+    run(0, pairs.size());
+  } else {
+    // Contiguous blocks, one per thread; the merge below is in pair order whatever the split.
+    std::vector<std::thread> workers;
+    const std::size_t block = (pairs.size() + n_threads - 1) / n_threads;
+    for (std::size_t t = 1; t < n_threads; ++t)
+      workers.emplace_back(run, std::min(pairs.size(), t * block),
+                           std::min(pairs.size(), (t + 1) * block));
+    run(0, std::min(pairs.size(), block));
+    for (std::thread& w : workers)
+      w.join();
+  }
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    merge(outcomes[k], *caches[k], stats, iterations, iterations_cold);
   // Pairs that left the broad phase lose their simplex and impulses.
   std::erase_if(cache_, [&](const auto& kv) { return kv.second.step != step_count_ + 1; });
   if (stats.narrow_queries > 0) {

@@ -80,6 +80,9 @@ struct WorldSettings {
   bool measure_cold = false;
   BroadPhaseKind broad_phase = BroadPhaseKind::sweep_and_prune;
   double grid_cell_size = 0;  ///< length units; ≤ 0: automatic (see UniformGrid)
+  /// Threads of the narrow phase (≥ 1): the candidate pairs are queried in parallel and their
+  /// contacts merged in pair order, so a step is bit for bit the same for any thread count.
+  int threads = 1;
 };
 
 /// One contact point between bodies a and b.
@@ -148,6 +151,9 @@ class World {
   std::vector<RigidBody>& bodies() { return bodies_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   const WorldSettings& settings() const { return settings_; }
+  /// Sets the narrow phase's thread count (which changes no result). Throws
+  /// std::invalid_argument outside [1, 1024].
+  void set_threads(int threads);
   double time() const { return time_; }
 
   /// The state carried between steps (see CarriedState).
@@ -194,9 +200,17 @@ class World {
     std::uint64_t step = 0;
   };
 
+  /// What the query of one pair found, before it is merged into the step (see narrow_phase).
+  struct PairOutcome;
+
   void narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats);
-  void collide(std::uint32_t ia, std::uint32_t ib, PairCache& cache, StepStats& stats,
-               double& iterations, double& iterations_cold);
+  /// The queries of one pair: reads only the bodies, the prepared world hulls and the pair's
+  /// previous simplex, which it replaces (safe to run for different pairs in parallel).
+  void collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
+               PairOutcome& out) const;
+  /// Appends a pair's contacts (with last step's impulses), counts and query record.
+  void merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
+             double& iterations_cold);
   const Polytope& world_hull(std::uint32_t i);
   void warm_start_impulses(std::size_t first, std::size_t count, const PairCache& cache);
   void store_impulses(PairCache& cache, std::size_t first, std::size_t count) const;
