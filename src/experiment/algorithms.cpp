@@ -779,12 +779,16 @@ AlgorithmInfo exact_entry() {
           .options = exact_option_schema()};
 }
 
+/// How many algorithms AddedAlgorithm may add at once: the registry's storage is reserved for
+/// them, so that adding one never moves the entries that find_algorithm has handed out.
+constexpr std::size_t kMaxAddedAlgorithms = 16;
+
 // The registry: one line per algorithm, in the default order of outputs; the optional peers
 // (FCL, Bullet) are listed only when they were built. Built on first use: the schemas live in
 // another translation unit, so the table is not a compile-time constant and must not depend on
 // the order of static initialisation.
-const auto& registry() {
-  static const std::array entries = {
+std::vector<AlgorithmInfo>& registry() {
+  static const std::array builtin = {
       gjk_bool_entry(),
       gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
                                              "GJK distance with Johnson's distance sub-algorithm"),
@@ -830,6 +834,12 @@ const auto& registry() {
       gjk_certified_entry(),
       exact_entry(),
   };
+  static std::vector<AlgorithmInfo> entries = [] {
+    std::vector<AlgorithmInfo> v;
+    v.reserve(builtin.size() + kMaxAddedAlgorithms);
+    v.assign(builtin.begin(), builtin.end());
+    return v;
+  }();
   return entries;
 }
 
@@ -843,6 +853,22 @@ const AlgorithmInfo* find_algorithm(std::string_view name) {
   for (const AlgorithmInfo& a : registry())
     if (a.name == name) return &a;
   return nullptr;
+}
+
+AddedAlgorithm::AddedAlgorithm(const AlgorithmInfo& algorithm) : name_(algorithm.name) {
+  if (find_algorithm(algorithm.name))
+    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
+                                "' is already registered");
+  std::vector<AlgorithmInfo>& entries = registry();
+  if (entries.size() == entries.capacity())
+    throw std::length_error("at most " + std::to_string(kMaxAddedAlgorithms) +
+                            " algorithms can be added");
+  entries.push_back(algorithm);
+}
+
+AddedAlgorithm::~AddedAlgorithm() {
+  std::vector<AlgorithmInfo>& entries = registry();
+  std::erase_if(entries, [&](const AlgorithmInfo& a) { return a.name == name_; });
 }
 
 bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii) {

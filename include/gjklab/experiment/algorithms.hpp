@@ -172,6 +172,24 @@ const AlgorithmInfo* find_algorithm(std::string_view name);
 /// "gjk-bool, gjk-johnson, …": the valid names, for error messages.
 std::string algorithm_names();
 
+/// An algorithm defined outside the library's registry (a test's, an extension's), registered
+/// for as long as this object lives: algorithms(), find_algorithm, experiment files, the
+/// benchmark and replay then treat it as any registered one, after the library's algorithms.
+/// Its entry is made like theirs (AlgorithmInfo from its query and option schema), so adding
+/// one is its file and this one line. Not thread-safe: add and remove while no query runs.
+/// Throws std::invalid_argument for a name already registered, std::length_error when too many
+/// are added at once.
+class AddedAlgorithm {
+ public:
+  explicit AddedAlgorithm(const AlgorithmInfo& algorithm);
+  ~AddedAlgorithm();
+  AddedAlgorithm(const AddedAlgorithm&) = delete;
+  AddedAlgorithm& operator=(const AddedAlgorithm&) = delete;
+
+ private:
+  std::string_view name_;
+};
+
 // ---- benchmark loops (the types above; the lookups here) ----------------------------------
 
 /// The algorithm's direct benchmark loop (AlgorithmInfo::bench), or nullptr if it has none or
