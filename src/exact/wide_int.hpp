@@ -30,17 +30,16 @@ class Wide {
   static constexpr int kLimbs = 16;
 
   Wide() = default;
-  // Copies move only the limbs in use (a value is usually far below the capacity), in an
-  // inline loop: a library memcpy call costs more than the few limbs it would copy.
+  // Copies take the whole fixed-size array, which compiles to a few vector moves: a loop over
+  // the limbs in use is turned by the compiler into a library memmove call, which costs more
+  // than the few limbs it copies. (Limbs past size_ are copied as unused bytes.)
   Wide(const Wide& other) : size_(other.size_), negative_(other.negative_) {
-    for (int k = 0; k < size_; ++k)
-      limb_[k] = other.limb_[k];
+    std::memcpy(limb_, other.limb_, sizeof limb_);
   }
   Wide& operator=(const Wide& other) {
     size_ = other.size_;
     negative_ = other.negative_;
-    for (int k = 0; k < size_; ++k)
-      limb_[k] = other.limb_[k];
+    std::memcpy(limb_, other.limb_, sizeof limb_);
     return *this;
   }
   Wide(long long v) {  // NOLINT: implicit, as mpz_class converts from integers
@@ -105,8 +104,7 @@ class Wide {
     while (out.size_ > 0 && r[out.size_ - 1] == 0)
       --out.size_;
     if (out.size_ > kLimbs) throw WideOverflow{};
-    for (int k = 0; k < out.size_; ++k)
-      out.limb_[k] = r[k];
+    std::memcpy(out.limb_, r, sizeof out.limb_);  // fixed size: see the copy constructor
     out.negative_ = x.negative_ != y.negative_;
     return out;
   }
