@@ -40,8 +40,6 @@ void AlgorithmOptions::set_max_iterations(int n) {
 #endif
 }
 
-namespace {
-
 Outcome from_boolean(const BooleanResult& r) {
   Outcome o;
   o.intersect = r.intersect;
@@ -62,6 +60,8 @@ Outcome from_distance(const DistanceResult& r) {
   o.termination = r.termination;
   return o;
 }
+
+namespace {
 
 Outcome from_penetration(const PenetrationResult& r, bool deepest_points);
 

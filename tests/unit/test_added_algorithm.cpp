@@ -29,27 +29,18 @@ GjkBooleanOptions fixed_start(const AlgorithmOptions& o) {
   return options;
 }
 
-Outcome outcome_of(const BooleanResult& r) {
-  Outcome o;
-  o.intersect = r.intersect;
-  o.iterations = r.iterations;
-  o.support_calls = r.support_calls;
-  o.termination = r.termination;
-  return o;
-}
-
 Outcome run_fixed(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return outcome_of(gjk_intersect(a, b, fixed_start(o)));
+  return from_boolean(gjk_intersect(a, b, fixed_start(o)));
 }
 
 Outcome trace_fixed(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
                     TraceRecorder& trace) {
-  return outcome_of(gjk_intersect(a, b, fixed_start(o), trace));
+  return from_boolean(gjk_intersect(a, b, fixed_start(o), trace));
 }
 
 Outcome run_fixed_swept(const Polytope& a, const Polytope& b, const SweptRadii& r,
                         const AlgorithmOptions& o) {
-  return outcome_of(
+  return from_boolean(
       gjk_intersect(SphereSwept<Polytope>(a, r.a), SphereSwept<Polytope>(b, r.b), fixed_start(o)));
 }
 

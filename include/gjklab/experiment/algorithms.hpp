@@ -98,6 +98,11 @@ struct BenchTally {
 using BenchLoop = BenchTally (*)(std::span<const BenchPair> pairs, const AlgorithmOptions& options,
                                  int repetitions);
 
+/// A boolean GJK answer in the shared vocabulary (no distance), for an entry's run.
+Outcome from_boolean(const BooleanResult& r);
+/// A distance answer in the shared vocabulary (distance and closest points), for an entry's run.
+Outcome from_distance(const DistanceResult& r);
+
 enum class AnswerKind { boolean, distance, exact };
 
 struct AlgorithmInfo {
