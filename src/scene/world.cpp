@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -331,10 +332,20 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
       !std::isfinite(single.depth))
     return;  // a failed query gives no contact rather than a NaN impulse
   normal.normalize();
-  out.points = clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape,
-                             pb, bodies_[ib].pose.rotation, normal, margin);
-  if (out.points.empty()) out.points.push_back(single);
   out.normal = normal;
+  out.points = clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape,
+                             pb, bodies_[ib].pose.rotation, out.normal, margin);
+  // The clipped points measure depth against one face. When the deepest is shallower than the
+  // pair's GJK/EPA depth by more than the slop (length units), that face does not carry the
+  // contact (a body pushed through a slab thinner than itself, past the face's plane) and the
+  // manifold would hide the penetration: the single GJK/EPA point is used instead.
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const ManifoldPoint& m : out.points)
+    deepest = std::max(deepest, m.depth);
+  if (out.points.empty() || deepest < single.depth - settings_.slop) {
+    out.points.assign(1, single);
+    out.normal = normal;
+  }
 }
 
 void World::merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
