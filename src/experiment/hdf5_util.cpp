@@ -197,6 +197,25 @@ namespace {
 std::string child_path(const std::string& parent_path, const std::string& name) {
   return parent_path == "/" ? "/" + name : parent_path + "/" + name;
 }
+
+/// Deflate, the one filter of the archives that shrinks data, stores at most 1032 bytes in one
+/// (zlib's limit), and the writer fills every row it adds.
+constexpr hsize_t kMaxDeflateRatio = 1032;
+
+/// Refuses a row count whose data (at the file type's size) would take more than kMaxDeflateRatio
+/// times the whole file: a corrupt count, which the reader would otherwise allocate (a damaged
+/// dimension of a 98 kB file asked for 48 TB).
+void check_rows_fit(const Context& cx, const OpenDataset& d, hid_t file_type,
+                    const std::string& label) {
+  const Handle file =
+      cx.handle(H5Iget_file_id(d.dataset.get()), H5Fclose, "cannot find the file of " + label);
+  hsize_t file_bytes = 0;
+  cx.check(H5Fget_filesize(file.get(), &file_bytes), "cannot read the size of the file");
+  const hsize_t row_bytes = std::max<hsize_t>(1, d.width * H5Tget_size(file_type));
+  if (d.rows > kMaxDeflateRatio * file_bytes / row_bytes)
+    cx.error(label + " has " + std::to_string(d.rows) + " rows: more than a file of " +
+             std::to_string(file_bytes) + " bytes can hold");
+}
 }  // namespace
 
 Handle open_group(const Context& cx, hid_t parent, const std::string& parent_path,
@@ -248,6 +267,7 @@ OpenDataset open_dataset(const Context& cx, hid_t group, const std::string& grou
   d.stored_rows = dims[0];
   d.rows = prefix ? expected_rows : dims[0];
   d.width = width;
+  check_rows_fit(cx, d, type.get(), label);
   return d;
 }
 

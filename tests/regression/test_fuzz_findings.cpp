@@ -175,6 +175,20 @@ TEST_CASE("bench config with an empty list of suites: refused, not a run that me
                     Catch::Contains("suites must name at least one suite"));
 }
 
+TEST_CASE(
+    "archive whose vertex table claims 2^41 rows in 98 kB: a clear error, not an allocation of "
+    "48 TB",
+    "[regression][fuzz]") {
+  // One damaged dimension: the reader allocated the rows it read from the file (std::bad_alloc
+  // from `gjklab inspect`; ASan: allocation-size-too-big). Row counts are now checked against
+  // what the file can hold (deflate stores at most 1032 bytes in one) before any allocation.
+  const std::string path =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/archive_vertex_table_2pow41_rows_in_98kB.h5";
+  CHECK_THROWS_WITH(experiment::read_archive(path),
+                    Catch::Contains("/geometry/") && Catch::Contains("2199023255552 rows") &&
+                        Catch::Contains("more than a file of 97564 bytes can hold"));
+}
+
 #ifdef GJKLAB_HAVE_FCL
 TEST_CASE(
     "FCL on cubes with a 1e154 vertex: NaN closest points are a numerical failure, not "
@@ -208,6 +222,26 @@ TEST_CASE(
     const experiment::Outcome o =
         experiment::run_algorithm(*experiment::find_algorithm(name), a, b, SweptRadii{}, options);
     CHECK(o.termination == Termination::invalid_input);
+  }
+}
+
+TEST_CASE(
+    "FCL on vertices at -9.9e19 beside features of size 1: refused as invalid input, not a "
+    "query that never returns",
+    "[regression][fuzz]") {
+  // Below the former bound of 1e30 on coordinates given to FCL: fcl-libccd's collide path
+  // (libccd's MPR, no iteration bound) never returned here, with or without --depth.
+  const experiment::PointCase c = fuzz_case("fcl_libccd_mpr_hang_vertices_at_9.9e19.jsonl");
+  const Polytope a(c.a), b(c.b);
+  for (const bool depth : {false, true}) {
+    experiment::AlgorithmOptions options;
+    options.oracle.depth = depth;
+    for (const char* name : {"fcl-libccd", "fcl-indep"}) {
+      CAPTURE(name, depth);
+      const experiment::Outcome o =
+          experiment::run_algorithm(*experiment::find_algorithm(name), a, b, SweptRadii{}, options);
+      CHECK(o.termination == Termination::invalid_input);
+    }
   }
 }
 
