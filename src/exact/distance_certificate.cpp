@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <span>
@@ -202,6 +203,47 @@ Vec3 nearest_combination(const ExactClosest<I>& c, std::span<const Vec3Of<I>> po
   return out;
 }
 
+/// The weights of c's points as long doubles λ_k = weights[k] / denominator, each with a
+/// relative error below 5·2^-64 (truncations of both to 64 bits, 2^-63 each, and the division's
+/// rounding, 2^-64; the scaling by 2^e is exact); only Wide
+/// (with GMP's integers the exact rounding is used directly).
+bool weight_estimates(const ExactClosest<Wide>& c, std::size_t size,
+                      std::array<long double, 4>& out) {
+  long e_den = 0;
+  const long double den = c.denominator.magnitude_2exp(&e_den);
+  for (std::size_t k = 0; k < size; ++k) {
+    out[k] = 0;
+    if (!(c.subset & (1u << k)) || sgn(c.weights[k]) == 0) continue;
+    if (sgn(c.weights[k]) < 0) return false;
+    long e = 0;
+    const long double m = c.weights[k].magnitude_2exp(&e);
+    out[k] = std::ldexp(m / den, static_cast<int>(e - e_den));
+  }
+  return true;
+}
+bool weight_estimates(const ExactClosest<Int>&, std::size_t, std::array<long double, 4>&) {
+  return false;
+}
+
+/// The nearest doubles to the witness Σ weights[k]·x_k / denominator of the points x_k of one
+/// cloud (`cloud[index[k]]`, the same points as `points` in the frame's units): from long double
+/// weights where that shows them, else exactly.
+template <class I>
+Vec3 nearest_witness(const ExactClosest<I>& c, std::span<const Vec3Of<I>> points,
+                     std::span<const Vec3> cloud, std::span<const std::int32_t> index,
+                     long exponent) {
+  std::array<long double, 4> weights{};
+  if (weight_estimates(c, points.size(), weights)) {
+    std::array<Vec3, 4> x;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      x[k] = cloud[index[k]];
+    if (const std::optional<Vec3> w = detail::nearest_weighted_sum({weights.data(), points.size()},
+                                                                   {x.data(), points.size()}))
+      return *w;
+  }
+  return nearest_combination(c, points, exponent);
+}
+
 /// The exact GJK state: the simplex's index pairs and their points in A, in B and in A − B
 /// (at most four; fixed storage, as the state is rebuilt for every certificate).
 template <class I>
@@ -276,8 +318,13 @@ std::optional<DistanceCertificate> certify_in_frame(std::span<const Vec3> a,
     const auto finish = [&](bool intersect) {
       DistanceCertificate out;
       out.intersect = intersect;
-      out.witness_a = nearest_combination(*c, simplex.points_a(), exponent);
-      out.witness_b = nearest_combination(*c, simplex.points_b(), exponent);
+      std::array<std::int32_t, 4> index_a{}, index_b{};
+      for (std::size_t k = 0; k < simplex.size; ++k) {
+        index_a[k] = simplex.pairs[k].a;
+        index_b[k] = simplex.pairs[k].b;
+      }
+      out.witness_a = nearest_witness(*c, simplex.points_a(), a, index_a, exponent);
+      out.witness_b = nearest_witness(*c, simplex.points_b(), b, index_b, exponent);
       simplex.keep(c->subset);
       if (!intersect) set_distance(c->numerator, c->denominator, exponent, out);
       out.feature.simplex.assign(simplex.pairs.begin(), simplex.pairs.begin() + simplex.size);

@@ -164,6 +164,31 @@ std::optional<Vec3> nearest_point(const AVec& x) {
   return out;
 }
 
+}  // namespace
+
+std::optional<Vec3> nearest_weighted_sum(std::span<const Real> weights,
+                                         std::span<const Vec3> points) {
+  Vec3 out;
+  for (int j = 0; j < 3; ++j) {
+    Approx sum;
+    Real magnitude = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Real term = weights[k] * points[k][j];
+      sum.v += term;
+      magnitude += std::fabs(term);
+    }
+    // Each term's error: its weight's (5·2^-64 relative) and the product's rounding (2^-64);
+    // at most 3 additions of 2^-64 · magnitude each: 9·2^-64 · magnitude in all, below 2^-60.
+    sum.err = magnitude * 0x1p-60L;
+    const std::optional<double> c = nearest_double(widen(sum));
+    if (!c) return std::nullopt;
+    out[j] = *c;
+  }
+  return out;
+}
+
+namespace {
+
 /// The hint's pairs, when they are distinct, in range and at most four.
 struct Feature {
   int size = 0;

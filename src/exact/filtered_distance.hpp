@@ -23,6 +23,12 @@ std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec
                                                              std::span<const Vec3> b,
                                                              const DistanceHint& hint);
 
+/// The nearest doubles of Σ λ_k x_k (at most four points), per coordinate, for weights λ_k ≥ 0
+/// each known to a relative error of at most 5·2^-64, when a long double evaluation with an error
+/// bound shows them; nullopt otherwise (then the caller rounds exactly).
+std::optional<Vec3> nearest_weighted_sum(std::span<const long double> weights,
+                                         std::span<const Vec3> points);
+
 /// The exact certificate alone: exact GJK from the hint for at most max_steps steps
 /// (distance_certificate.cpp). certify_distance tries the filtered one first.
 std::optional<DistanceCertificate> certify_distance_exact(std::span<const Vec3> a,

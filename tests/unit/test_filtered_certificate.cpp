@@ -1,14 +1,19 @@
 // The distance certificate decided in floating point (src/exact/filtered_distance.cpp): where it
 // answers, the exact certificate on the same hint answers the same, bit for bit, and the QP
 // agrees; on adversarial hints it never certifies a wrong value; points that tie with the
-// supporting plane are decided exactly, including a tie broken by one ulp.
+// supporting plane are decided exactly, including a tie broken by one ulp; the long double
+// rounding of a weighted sum of points is right or declines, never wrong.
+#include <gmpxx.h>
+
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "../../src/exact/filtered_distance.hpp"
+#include "../../src/exact/gmp_support.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
@@ -160,4 +165,43 @@ TEST_CASE("filtered distance certificate: coplanar faces tie and are decided exa
   REQUIRE(c);
   CHECK(c->distance_squared == qp(a, b).distance_squared);
   CHECK(c->distance < 1.0);
+}
+
+TEST_CASE("long double witness rounding: right or undecided, never wrong", "[certificate][exact]") {
+  // Σ λ_k x_k with λ_k = w_k / D for small integers: the long double weights are within one
+  // rounding of the exact ones, and the exact sum is rounded with GMP for comparison.
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> weight(0, 1000);
+  std::normal_distribution<double> coordinate(0, 1);
+  int decided = 0;
+  for (int round = 0; round < 20000; ++round) {
+    const int n = 1 + static_cast<int>(rng() % 4);
+    std::array<long double, 4> lambda{};
+    std::array<Vec3, 4> x;
+    std::array<int, 4> w{};
+    int d = 0;
+    for (int k = 0; k < n; ++k) {
+      w[k] = weight(rng);
+      d += w[k];
+      // Coordinates of mixed magnitudes, some repeated so that sums land on midpoints.
+      x[k] = Vec3(coordinate(rng), std::ldexp(coordinate(rng), -30), round % 7 == 0 ? 1.0 : 0.5);
+    }
+    if (d == 0) continue;
+    if (round % 11 == 0 && n >= 2) x[1].z() = std::nextafter(x[0].z(), 2.0);  // midpoints
+    for (int k = 0; k < n; ++k)
+      lambda[k] = static_cast<long double>(w[k]) / d;
+    const std::optional<Vec3> fast = exact::detail::nearest_weighted_sum(
+        {lambda.data(), static_cast<std::size_t>(n)}, {x.data(), static_cast<std::size_t>(n)});
+    if (!fast) continue;
+    ++decided;
+    for (int j = 0; j < 3; ++j) {
+      mpq_class sum = 0;
+      for (int k = 0; k < n; ++k)
+        sum += mpq_class(w[k]) * mpq_class(x[k][j]);
+      sum /= d;
+      INFO("round " << round << ", coordinate " << j);
+      CHECK((*fast)[j] == exact::detail::nearest_double(sum.get_mpq_t()));
+    }
+  }
+  CHECK(decided > 15000);
 }
