@@ -12,6 +12,7 @@
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/real_objects.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::cli {
@@ -26,7 +27,8 @@ constexpr std::int64_t kMaxBodies = 100'000;
 constexpr int kPlacementAttempts = 1000;
 /// The shapes a [[bodies]] group may name (error messages).
 constexpr const char* kBodyShapes =
-    "box, cone, cylinder, sphere, uv_sphere, hull, mesh, ball, capsule, sphere_points, "
+    "box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, capsule, "
+    "sphere_points, "
     "ball_points, cube_points, gaussian, flat_points, collinear_points, sliver, prism, pyramid";
 
 int line_of(const toml::source_region& r) {
@@ -308,6 +310,39 @@ std::vector<std::vector<Vec3>> read_meshes(const Table& t) {
   return meshes;
 }
 
+/// The hulls of a `real_object` group (`objects`: "all" or a list of names, as in experiments;
+/// body i takes object i mod count). A real object has unit radius: halved and scaled by
+/// `size`, its extent is `size` as for the demo shapes.
+std::vector<std::vector<Vec3>> read_real_objects(const Table& t) {
+  const toml::node* node = t.raw().get("objects");
+  if (!node)
+    t.fail("objects", "missing (shape = \"real_object\" needs \"all\" or a list of names)");
+  std::vector<std::string> names;
+  if (node->value<std::string>() == std::optional<std::string>("all")) {
+    names = experiment::real_object_names();
+  } else if (const toml::array* list = node->as_array()) {
+    for (const toml::node& name : *list) {
+      if (!name.is_string()) t.fail("objects", "expected \"all\" or an array of object names");
+      names.push_back(*name.value<std::string>());
+    }
+  } else {
+    t.fail("objects", "expected \"all\" or an array of object names");
+  }
+  if (names.empty()) t.fail("objects", "names no object");
+  std::vector<std::vector<Vec3>> hulls;
+  const Vec3 s = 0.5 * size_of(t);
+  for (const std::string& name : names) {
+    try {
+      hulls.push_back(experiment::real_object(name));
+    } catch (const experiment::RealObjectError& e) {
+      t.fail("objects", e.what());
+    }
+    for (Vec3& v : hulls.back())
+      v = v.cwiseProduct(s);
+  }
+  return hulls;
+}
+
 /// The swept radius of a group (length units): `radius`, by default 0.5 for a ball and 0.25
 /// for a capsule (the demo shapes' half size and quarter size), 0 otherwise (no sweep).
 double swept_radius_of(const Table& t, const std::string& shape) {
@@ -456,25 +491,28 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
   std::vector<double> sizes;
   std::size_t group = 0;
   for (const Table& t : root.tables("bodies")) {
-    t.allow_only({"shape", "size", "vertices", "points", "path", "radius", "aspect", "count",
-                  "density", "friction", "restitution", "placement", "position", "spacing", "row",
-                  "region", "random_rotation", "velocity"});
+    t.allow_only({"shape", "size", "vertices", "points", "path", "objects", "radius", "aspect",
+                  "count", "density", "friction", "restitution", "placement", "position", "spacing",
+                  "row", "region", "random_rotation", "velocity"});
     const std::string shape = t.string("shape", "");
     if (shape.empty()) t.fail("shape", std::string("missing (required): ") + kBodyShapes);
     const double radius = swept_radius_of(t, shape);
-    // Generated clouds: one per body, from the group's own generator; meshes: body i takes
-    // file i mod count; the other shapes: one hull for the group.
+    // Generated clouds: one per body, from the group's own generator; meshes and real
+    // objects: body i takes file (object) i mod count; the other shapes: one hull for the group.
     const FamilyCloud* generated = family_cloud(shape);
     const auto rng_of_group = generated ? group_rng(s.seed, group) : nullptr;
-    const std::vector<std::vector<Vec3>> meshes =
-        shape == "mesh" ? read_meshes(t) : std::vector<std::vector<Vec3>>{};
+    const std::vector<std::vector<Vec3>> meshes = shape == "mesh" ? read_meshes(t)
+                                                  : shape == "real_object"
+                                                      ? read_real_objects(t)
+                                                      : std::vector<std::vector<Vec3>>{};
     ++group;
     auto shape_of_body = [&](std::int64_t i) {
       if (generated)
         return shapes.get(t, "shape", family_cloud_points(t, *generated, rng_of_group.get()),
                           radius);
       if (!meshes.empty())
-        return shapes.get(t, "path", meshes[static_cast<std::size_t>(i) % meshes.size()], radius);
+        return shapes.get(t, shape == "mesh" ? "path" : "objects",
+                          meshes[static_cast<std::size_t>(i) % meshes.size()], radius);
       return shapes.get(t, shape == "hull" ? "points" : "shape", cloud_of(t, shape), radius);
     };
     auto cs = shape_of_body(0);

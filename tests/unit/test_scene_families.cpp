@@ -260,3 +260,35 @@ spacing = 0.6
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("scene files: bodies from real objects, body i taking object i mod count",
+          "[unit][scene][real_object]") {
+  const cli::SceneSetup s = parse_scene(R"([[bodies]]
+shape = "real_object"
+objects = ["cow", "fandisk"]
+size = 0.8
+count = 3
+placement = "grid"
+spacing = 2
+)",
+                                        data_source());
+  const auto& bodies = s.world->bodies();
+  REQUIRE(bodies.size() == 3);
+  CHECK(bodies[0].shape != bodies[1].shape);
+  CHECK(bodies[2].shape == bodies[0].shape);
+  for (const auto& b : bodies) {
+    // Unit radius about the box centre, halved and scaled by size: every vertex within 0.4 of
+    // that centre, so within 0.8 of the centroid (the body's origin); one vertex at 0.4 makes a
+    // side of the box at least 0.8/√3, so some vertex is at least 0.23 from any point.
+    CHECK(b.shape->radius <= 0.8);
+    CHECK(b.shape->radius >= 0.23);
+    CHECK(b.mass > 0);
+  }
+  CHECK(error_of("[[bodies]]\nshape = \"real_object\"\nobjects = [\"teapot-not-there\"]\n")
+            .find("bad.toml:3: key 'bodies[0].objects'") == 0);
+  CHECK(
+      error_of("[[bodies]]\nshape = \"real_object\"\n").find("key 'bodies[0].objects': missing") !=
+      std::string::npos);
+  CHECK(error_of("[[bodies]]\nshape = \"real_object\"\nobjects = []\n")
+            .find("bad.toml:3: key 'bodies[0].objects': names no object") == 0);
+}
