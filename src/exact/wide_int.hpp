@@ -85,27 +85,28 @@ class Wide {
   friend Wide operator*(const Wide& x, const Wide& y) {
     Wide out;
     if (x.size_ == 0 || y.size_ == 0) return out;
-    const int n = x.size_ + y.size_;
+    out.negative_ = x.negative_ != y.negative_;
+    if (x.size_ == 1 && y.size_ == 1) {  // the most common product: one multiplication
+      const WideProduct p = static_cast<WideProduct>(x.limb_[0]) * y.limb_[0];
+      out.limb_[0] = static_cast<std::uint64_t>(p);
+      out.limb_[1] = static_cast<std::uint64_t>(p >> 64);
+      out.size_ = out.limb_[1] != 0 ? 2 : 1;
+      return out;
+    }
+    int n = x.size_ + y.size_;
     if (n - 1 > kLimbs) throw WideOverflow{};
-    std::uint64_t r[2 * kLimbs];
-    for (int k = 0; k < y.size_; ++k)  // the rows below set r[i + y.size_] themselves
-      r[k] = 0;
-    for (int i = 0; i < x.size_; ++i) {
-      WideProduct carry = 0;
-      const WideProduct xi = x.limb_[i];
-      for (int j = 0; j < y.size_; ++j) {
-        carry += xi * y.limb_[j] + r[i + j];
-        r[i + j] = static_cast<std::uint64_t>(carry);
-        carry >>= 64;
-      }
-      r[i + y.size_] = static_cast<std::uint64_t>(carry);
+    if (n <= kLimbs) {
+      multiply_into(x, y, out.limb_);
+    } else {  // the top limb may still be zero: compute into room for it, then check
+      std::uint64_t r[2 * kLimbs];
+      multiply_into(x, y, r);
+      if (r[n - 1] != 0) throw WideOverflow{};
+      std::memcpy(out.limb_, r, sizeof out.limb_);  // fixed size: see the copy constructor
+      n = kLimbs;
     }
     out.size_ = n;
-    while (out.size_ > 0 && r[out.size_ - 1] == 0)
+    while (out.size_ > 0 && out.limb_[out.size_ - 1] == 0)
       --out.size_;
-    if (out.size_ > kLimbs) throw WideOverflow{};
-    std::memcpy(out.limb_, r, sizeof out.limb_);  // fixed size: see the copy constructor
-    out.negative_ = x.negative_ != y.negative_;
     return out;
   }
 
@@ -199,6 +200,22 @@ class Wide {
     for (int k = x.size_ - 1; k >= 0; --k)
       if (x.limb_[k] != y.limb_[k]) return x.limb_[k] < y.limb_[k] ? -1 : 1;
     return 0;
+  }
+
+  /// r[0, x.size_ + y.size_) := |x|·|y| (schoolbook).
+  static void multiply_into(const Wide& x, const Wide& y, std::uint64_t* r) {
+    for (int k = 0; k < y.size_; ++k)  // the rows below set r[i + y.size_] themselves
+      r[k] = 0;
+    for (int i = 0; i < x.size_; ++i) {
+      WideProduct carry = 0;
+      const WideProduct xi = x.limb_[i];
+      for (int j = 0; j < y.size_; ++j) {
+        carry += xi * y.limb_[j] + r[i + j];
+        r[i + j] = static_cast<std::uint64_t>(carry);
+        carry >>= 64;
+      }
+      r[i + y.size_] = static_cast<std::uint64_t>(carry);
+    }
   }
 
   /// x + (y with sign y_negative).

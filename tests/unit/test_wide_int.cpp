@@ -90,6 +90,13 @@ TEST_CASE("fixed-width integers: a result beyond the capacity throws instead of 
   const Wide top = big.shifted_left(63);  // 2^(64·16 − 1): the largest power of two that fits
   CHECK_THROWS_AS(top + top, gjklab::exact::detail::WideOverflow);
   CHECK_NOTHROW(top - top);
+  // 8 limbs times 9 limbs has room for 17, but 2^(64·7)·2^(64·8) fits in 16: no overflow.
+  const Wide eight = Wide::shifted(1, false, 64L * 7), nine = Wide::shifted(1, true, 64L * 8);
+  Mpz expected;
+  mpz_set_si(expected.get(), -1);
+  mpz_mul_2exp(expected.get(), expected.get(), 64 * 15);
+  CHECK(equals(eight * nine, expected.get()));
+  CHECK(equals(nine * eight, expected.get()));
 }
 
 TEST_CASE("fixed-width integers: quotients and square roots round like GMP's, ties to even",
