@@ -219,7 +219,7 @@ class Wide {
   }
 
   /// x + (y with sign y_negative).
-  static Wide sum(const Wide& x, const Wide& y, bool y_negative) {
+  [[gnu::always_inline]] static Wide sum(const Wide& x, const Wide& y, bool y_negative) {
     if (y.size_ == 0) return x;
     if (x.size_ == 0) {
       Wide out = y;
