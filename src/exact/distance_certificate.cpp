@@ -204,20 +204,15 @@ Vec3 nearest_combination(const ExactClosest<I>& c, std::span<const Vec3Of<I>> po
 }
 
 /// The weights of c's points as long doubles λ_k = weights[k] / denominator, each with a
-/// relative error below 5·2^-64 (truncations of both to 64 bits, 2^-63 each, and the division's
-/// rounding, 2^-64; the scaling by 2^e is exact); only Wide
+/// relative error below 5·2^-64 (ratio_estimate); only Wide
 /// (with GMP's integers the exact rounding is used directly).
 bool weight_estimates(const ExactClosest<Wide>& c, std::size_t size,
                       std::array<long double, 4>& out) {
-  long e_den = 0;
-  const long double den = c.denominator.magnitude_2exp(&e_den);
   for (std::size_t k = 0; k < size; ++k) {
     out[k] = 0;
-    if (!(c.subset & (1u << k)) || sgn(c.weights[k]) == 0) continue;
+    if (!(c.subset & (1u << k))) continue;
     if (sgn(c.weights[k]) < 0) return false;
-    long e = 0;
-    const long double m = c.weights[k].magnitude_2exp(&e);
-    out[k] = std::ldexp(m / den, static_cast<int>(e - e_den));
+    out[k] = detail::ratio_estimate(c.weights[k], c.denominator);
   }
   return true;
 }

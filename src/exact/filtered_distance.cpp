@@ -561,14 +561,39 @@ double nearest_quotient_of(const Wide& num, const Wide& den, long exponent) {
   return nearest_quotient_of(n, d, exponent);
 }
 
-/// The witness points' nearest doubles, exactly.
+/// The feature's weights λ_0 = (D − Σ c_k)/D, λ_k = c_k/D as long doubles (ratio_estimate);
+/// false for GMP's integers, whose sums are rounded exactly instead.
+bool weight_estimates(const std::array<Wide, 3>& c, const Wide& d, int size,
+                      std::array<long double, 4>& out) {
+  Wide rest = d;
+  for (int k = 1; k < size; ++k) {
+    if (sgn(c[k - 1]) < 0) return false;  // not for a feature decided to hold its point
+    out[k] = ratio_estimate(c[k - 1], d);
+    rest -= c[k - 1];
+  }
+  if (sgn(rest) < 0) return false;
+  out[0] = ratio_estimate(rest, d);
+  return true;
+}
+bool weight_estimates(const std::array<Int, 3>&, const Int&, int, std::array<long double, 4>&) {
+  return false;
+}
+
+/// The witness points' nearest doubles: from the exact weights in long double where that shows
+/// them (nearest_weighted_sum), else exactly.
 template <class I>
 std::pair<Vec3, Vec3> exact_witnesses(const Feature& f) {
   const IntegerFeature<I> x = integer_feature<I>(f);
   std::array<I, 3> c{0, 0, 0};
   I d = 1;
   exact_weights(x, f.size, c, d);
-  const auto combine = [&](const std::array<Vec3Of<I>, 4>& points) {
+  std::array<long double, 4> weights{};
+  const bool estimated = weight_estimates(c, d, f.size, weights);
+  const auto combine = [&](const std::array<Vec3Of<I>, 4>& points, const std::array<Vec3, 4>& xs) {
+    if (estimated)
+      if (const std::optional<Vec3> w = nearest_weighted_sum({weights.data(), std::size_t(f.size)},
+                                                             {xs.data(), std::size_t(f.size)}))
+        return *w;
     Vec3 out;
     for (int j = 0; j < 3; ++j) {
       I sum = d * points[0][j];
@@ -578,7 +603,7 @@ std::pair<Vec3, Vec3> exact_witnesses(const Feature& f) {
     }
     return out;
   };
-  return {combine(x.a), combine(x.b)};
+  return {combine(x.a, f.a), combine(x.b, f.b)};
 }
 
 std::pair<Vec3, Vec3> exact_witnesses(const Feature& f) {

@@ -95,6 +95,16 @@ std::optional<double> settle(double r, const Side& side) {
   return std::nullopt;
 }
 
+/// num/den as a long double for num ≥ 0, den > 0, with a relative error below 5·2^-64: both
+/// truncated to their top 64 bits (2^-63 each), the division rounded (2^-64); the scaling by a
+/// power of two is exact in long double's range.
+inline long double ratio_estimate(const Wide& num, const Wide& den) {
+  if (sgn(num) == 0) return 0;
+  long e_num = 0, e_den = 0;
+  const long double m_num = num.magnitude_2exp(&e_num), m_den = den.magnitude_2exp(&e_den);
+  return std::ldexp(m_num / m_den, static_cast<int>(e_num - e_den));
+}
+
 /// The double nearest to num/den·2^exponent (den ≠ 0).
 inline std::optional<double> nearest_quotient(const Wide& num, const Wide& den, long exponent) {
   if (sgn(num) == 0) return 0.0;
