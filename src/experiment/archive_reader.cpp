@@ -15,6 +15,7 @@
 #include <span>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 #include <unordered_map>
 
 #include "archive_schema.hpp"
@@ -54,8 +55,15 @@ void read_field(const Reader& in, hid_t group, const std::string& path, const st
   } else {
     const auto values = h5::read_column<typename S::Element>(
         in.cx, group, path, name, S::memory(in.types), rows.size(), S::width);
-    for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t i = 0; i < rows.size(); ++i) {
       rows[i]->*member = S::get(values, i);
+      // libhdf5 turns a stored value that no member of the file's enum type names into all
+      // ones (255), which would index past every table of the enum's values.
+      if constexpr (std::is_enum_v<T>)
+        if (to_string(rows[i]->*member) == "unknown")
+          in.cx.error(path + "/" + name + " row " + std::to_string(i) +
+                      " holds a value outside its enum");
+    }
   }
 }
 

@@ -189,6 +189,18 @@ TEST_CASE(
                         Catch::Contains("more than a file of 97564 bytes can hold"));
 }
 
+TEST_CASE(
+    "archive whose contact column holds a value its enum type does not name: a clear error, "
+    "not an index past the summary's table",
+    "[regression][fuzz]") {
+  // libhdf5 reads such a value as 255; `gjklab inspect` counted contacts in a table of three
+  // (UBSan: index 255 out of bounds). Every enum column is now checked as it is read.
+  const std::string path =
+      std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/archive_contact_enum_value_unnamed.h5";
+  CHECK_THROWS_WITH(experiment::read_archive(path),
+                    Catch::Contains("contact row") && Catch::Contains("outside its enum"));
+}
+
 #ifdef GJKLAB_HAVE_FCL
 TEST_CASE(
     "FCL on cubes with a 1e154 vertex: NaN closest points are a numerical failure, not "
