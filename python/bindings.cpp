@@ -576,8 +576,8 @@ void def_exact_answer(py::module_& m) {
             ", distance_squared=" + a.distance_squared.numerator() + "/" +
             a.distance_squared.denominator();
         if (a.depth_squared)
-          text +=
-              ", depth_squared=" + a.depth_squared->numerator() + "/" + a.depth_squared->denominator();
+          text += ", depth_squared=" + a.depth_squared->numerator() + "/" +
+                  a.depth_squared->denominator();
         return text + ", method='" + std::string(to_string(a.method)) + "')";
       });
 }

@@ -63,7 +63,8 @@ double nearest_sqrt_plus(mpq_srcptr q, mpq_srcptr r) {
 /// out := the exact rational value of `r`.
 void set_rational(mpq_ptr out, const Rational& r) {
   if (mpq_set_str(out, (r.numerator() + "/" + r.denominator()).c_str(), 10) != 0)
-    throw std::logic_error("exact oracle: malformed rational " + r.numerator() + "/" + r.denominator());
+    throw std::logic_error("exact oracle: malformed rational " + r.numerator() + "/" +
+                           r.denominator());
   mpq_canonicalize(out);
 }
 

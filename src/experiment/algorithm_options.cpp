@@ -226,11 +226,10 @@ constexpr auto kGjkDistanceRows =
     join(distance_rows<distance_options>(), std::array<OptionRow, 1>{kPrecisionRow});
 
 // warm_start last, so that the variants' earlier rows keep their order in archived descriptions.
-constexpr auto kGjkVariantRows =
-    join(kGjkDistanceRows,
-         std::to_array<OptionRow>({
-             {"warm_start", [](AlgorithmOptions& o) -> bool& { return o.warm_start; }},
-         }));
+constexpr auto kGjkVariantRows = join(
+    kGjkDistanceRows, std::to_array<OptionRow>({
+                          {"warm_start", [](AlgorithmOptions& o) -> bool& { return o.warm_start; }},
+                      }));
 
 constexpr auto kGjkNesterovRows =
     join(distance_rows<nesterov_options>(),

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "../support/gjk_hints.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/exact/witness.hpp"
@@ -19,6 +20,7 @@ using exact::AnswerMethod;
 using exact::DepthHint;
 using exact::DistanceHint;
 using exact::IndexPair;
+using gjklab::testing::gjk_hint;
 
 namespace {
 
@@ -34,14 +36,6 @@ exact::Rational rational(const char* num, const char* den = "1") {
 
 exact::OracleAnswer qp(const Cloud& a, const Cloud& b) {
   return exact::solve(a, b, {.depth = true, .certificates = false});
-}
-
-DistanceHint gjk_hint(const Cloud& a, const Cloud& b) {
-  const DistanceResult r = gjk_distance(Polytope(a), Polytope(b));
-  DistanceHint h;
-  for (const SimplexVertex& v : r.simplex.vertices())
-    h.simplex.push_back({v.index_a, v.index_b});
-  return h;
 }
 
 DepthHint epa_hint(const Cloud& a, const Cloud& b) {

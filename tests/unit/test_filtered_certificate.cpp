@@ -14,6 +14,7 @@
 
 #include "../../src/exact/filtered_distance.hpp"
 #include "../../src/exact/gmp_support.hpp"
+#include "../support/gjk_hints.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
@@ -23,18 +24,11 @@ using namespace gjklab;
 using exact::DistanceHint;
 using exact::detail::certify_distance_exact;
 using exact::detail::certify_distance_filtered;
+using gjklab::testing::gjk_hint;
 
 namespace {
 
 using Cloud = std::vector<Vec3>;
-
-DistanceHint gjk_hint(const Cloud& a, const Cloud& b) {
-  const DistanceResult r = gjk_distance(Polytope(a), Polytope(b));
-  DistanceHint h;
-  for (const SimplexVertex& v : r.simplex.vertices())
-    h.simplex.push_back({v.index_a, v.index_b});
-  return h;
-}
 
 exact::OracleAnswer qp(const Cloud& a, const Cloud& b) {
   return exact::solve(a, b, {.certificates = false, .hull_vertices = false});

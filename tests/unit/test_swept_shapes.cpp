@@ -150,7 +150,7 @@ TEST_CASE("exact oracle: swept distances are correctly rounded, with no cancella
   SECTION("points √2 apart, radii 0.5: √2 − 1") {
     const auto ans =
         exact::solve_swept(std::vector{Vec3(0, 0, 0)}, std::vector{Vec3(1, 1, 0)}, 0.5, 0.5);
-    CHECK(ans.distance == 0x1.a827999fcef32p-2);   // √2 − 1 rounded to nearest (50 digits)
+    CHECK(ans.distance == 0x1.a827999fcef32p-2);     // √2 − 1 rounded to nearest (50 digits)
     CHECK(ans.distance_squared.numerator() == "2");  // the cores' exact squared distance
   }
   SECTION("√3 − 0.75 from a rounded box corner") {
