@@ -482,11 +482,54 @@ Quat random_rotation(std::mt19937_64& rng) {
   return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
 }
 
+/// A placed body's bounding ball, for the random placement's overlap test.
+struct Placed {
+  Vec3 centre;
+  double radius;
+};
+
+/// The box of a `random` placement: `region` = [[xmin, ymin, zmin], [xmax, ymax, zmax]].
+std::pair<Vec3, Vec3> random_region(const Table& t) {
+  const toml::node* r = t.raw().get("region");
+  const toml::array* a = r ? r->as_array() : nullptr;
+  if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array())
+    t.fail("region", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+  const auto l = t.numbers_of(*a->get(0)->as_array(), "region", 3);
+  const auto h = t.numbers_of(*a->get(1)->as_array(), "region", 3);
+  const Vec3 lo(l[0], l[1], l[2]), hi(h[0], h[1], h[2]);
+  if (!(lo.array() <= hi.array()).all())
+    t.fail("region", "the lower corner must not exceed the upper");
+  return {lo, hi};
+}
+
+/// A centre in [lo, hi] whose ball of `radius` overlaps no placed body's, drawn uniformly; a
+/// ConfigError naming body i of count when kPlacementAttempts draws all overlap.
+Vec3 free_centre(const Table& t, const std::pair<Vec3, Vec3>& region, double radius,
+                 const std::vector<Placed>& placed, std::mt19937_64& rng, std::int64_t i,
+                 std::int64_t count) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const auto& [lo, hi] = region;
+  for (int attempt = 0; attempt < kPlacementAttempts; ++attempt) {
+    const Vec3 centre = lo + (hi - lo).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+    const bool free = std::none_of(placed.begin(), placed.end(), [&](const Placed& p) {
+      return (p.centre - centre).norm() < p.radius + radius;
+    });
+    if (free) return centre;
+  }
+  t.fail("region", "cannot place body " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                       " without overlap: the region is too small");
+}
+
+/// Body i's centre in a `stack` (along z) or a `grid` (row × row layers) from `origin`.
+Vec3 ordered_centre(bool stack, const Vec3& origin, double spacing, std::int64_t row,
+                    std::int64_t i) {
+  if (stack) return origin + Vec3(0, 0, spacing * static_cast<double>(i));
+  const std::int64_t layer = i / (row * row), in = i % (row * row);
+  return origin + spacing * Vec3(static_cast<double>(in % row), static_cast<double>(in / row),
+                                 static_cast<double>(layer));
+}
+
 void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt19937_64& rng) {
-  struct Placed {
-    Vec3 centre;
-    double radius;
-  };
   std::vector<Placed> placed;
   std::vector<double> sizes;
   std::size_t group = 0;
@@ -523,44 +566,16 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
     const double spacing = t.number("spacing", cs->size, 1e-9, 1e12);
     const auto row = t.integer("row", 10, 1, kMaxBodies);
     const bool spin = t.boolean("random_rotation", false);
-    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
-    if (placement == "random") {
-      const toml::node* r = t.raw().get("region");
-      const toml::array* a = r ? r->as_array() : nullptr;
-      if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array())
-        t.fail("region", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
-      const auto l = t.numbers_of(*a->get(0)->as_array(), "region", 3);
-      const auto h = t.numbers_of(*a->get(1)->as_array(), "region", 3);
-      lo = Vec3(l[0], l[1], l[2]);
-      hi = Vec3(h[0], h[1], h[2]);
-      if (!(lo.array() <= hi.array()).all())
-        t.fail("region", "the lower corner must not exceed the upper");
-    } else if (placement != "stack" && placement != "grid") {
+    std::pair<Vec3, Vec3> region;
+    if (placement == "random")
+      region = random_region(t);
+    else if (placement != "stack" && placement != "grid")
       t.fail("placement", "unknown placement '" + placement + "'; valid: stack, grid, random");
-    }
-    std::uniform_real_distribution<double> u(0, 1);
     for (std::int64_t i = 0; i < count; ++i) {
       if (i > 0 && (generated || meshes.size() > 1)) cs = shape_of_body(i);
-      Vec3 centre;
-      if (placement == "stack") {
-        centre = origin + Vec3(0, 0, spacing * static_cast<double>(i));
-      } else if (placement == "grid") {
-        const std::int64_t layer = i / (row * row), in = i % (row * row);
-        centre = origin + spacing * Vec3(static_cast<double>(in % row),
-                                         static_cast<double>(in / row), static_cast<double>(layer));
-      } else {
-        int attempt = 0;
-        for (; attempt < kPlacementAttempts; ++attempt) {
-          centre = lo + (hi - lo).cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
-          const bool free = std::none_of(placed.begin(), placed.end(), [&](const Placed& p) {
-            return (p.centre - centre).norm() < p.radius + cs->radius;
-          });
-          if (free) break;
-        }
-        if (attempt == kPlacementAttempts)
-          t.fail("region", "cannot place body " + std::to_string(i + 1) + " of " +
-                               std::to_string(count) + " without overlap: the region is too small");
-      }
+      const Vec3 centre = placement == "random"
+                              ? free_centre(t, region, cs->radius, placed, rng, i, count)
+                              : ordered_centre(placement == "stack", origin, spacing, row, i);
       const Quat q = spin ? random_rotation(rng) : Quat::Identity();
       scene::RigidBody b = scene::make_dynamic_body(cs, density, q, centre);
       b.friction = t.number("friction", 0.5, 0, 100);
