@@ -137,19 +137,14 @@ void flat_features(HullFeatures& out) {
   unique_directions(out.edge_directions);
 }
 
-void solid_features(HullFeatures& out) {
-  using Mesh = CGAL::Surface_mesh<Epick::Point_3>;
-  std::vector<Epick::Point_3> points;
-  points.reserve(out.vertices.size());
-  for (const Vec3& v : out.vertices)
-    points.emplace_back(v.x(), v.y(), v.z());
-  Mesh mesh;
-  CGAL::convex_hull_3(points.begin(), points.end(), mesh);
+using Mesh = CGAL::Surface_mesh<Epick::Point_3>;
 
-  // Every input point is extreme, so the hull's vertices are exactly the input points. They
-  // keep their (lexicographic) input order: the order of the mesh's vertices depends on heap
-  // addresses inside CGAL, and a peer's answer can depend on the vertex order (FCL's Convex
-  // averages its vertices for an interior point and breaks support ties by index).
+/// For each mesh vertex, the index of its point in out.vertices. Every input point is extreme,
+/// so the hull's vertices are exactly the input points; they keep their (lexicographic) input
+/// order: the order of the mesh's vertices depends on heap addresses inside CGAL, and a peer's
+/// answer can depend on the vertex order (FCL's Convex averages its vertices for an interior
+/// point and breaks support ties by index).
+std::vector<int> input_indices(const Mesh& mesh, const HullFeatures& out) {
   std::vector<int> index(mesh.number_of_vertices(), -1);
   for (Mesh::Vertex_index v : mesh.vertices()) {
     const Epick::Point_3& p = mesh.point(v);
@@ -159,82 +154,110 @@ void solid_features(HullFeatures& out) {
       throw std::logic_error("hull features: a hull vertex is not an input point");
     index[v.idx()] = static_cast<int>(found - out.vertices.begin());
   }
-  auto vertex_of = [&](Mesh::Vertex_index v) { return index[v.idx()]; };
+  return index;
+}
 
-  // Union-find of triangles that share an edge and lie in one plane.
-  std::vector<int> parent(mesh.number_of_faces());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int f) {
-    while (parent[f] != f)
-      f = parent[f] = parent[parent[f]];
-    return f;
-  };
-  for (Mesh::Edge_index e : mesh.edges()) {
-    const Mesh::Halfedge_index h = mesh.halfedge(e), o = mesh.opposite(h);
-    const auto& p = mesh.point(mesh.source(h));
-    const auto& q = mesh.point(mesh.target(h));
-    const auto& r = mesh.point(mesh.target(mesh.next(h)));
-    const auto& s = mesh.point(mesh.target(mesh.next(o)));
-    if (CGAL::coplanar(p, q, r, s)) {
-      const int a = find(static_cast<int>(mesh.face(h).idx()));
-      const int b = find(static_cast<int>(mesh.face(o).idx()));
-      parent[a] = b;
+/// The mesh's triangles grouped into faces: union-find of triangles that share an edge and lie
+/// in one plane.
+class CoplanarGroups {
+ public:
+  explicit CoplanarGroups(const Mesh& mesh) : mesh_(mesh), parent_(mesh.number_of_faces()) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+    for (Mesh::Edge_index e : mesh.edges()) {
+      const Mesh::Halfedge_index h = mesh.halfedge(e), o = mesh.opposite(h);
+      const auto& p = mesh.point(mesh.source(h));
+      const auto& q = mesh.point(mesh.target(h));
+      const auto& r = mesh.point(mesh.target(mesh.next(h)));
+      const auto& s = mesh.point(mesh.target(mesh.next(o)));
+      if (CGAL::coplanar(p, q, r, s)) parent_[of(mesh.face(h))] = of(mesh.face(o));
     }
   }
-  auto group = [&](Mesh::Halfedge_index h) { return find(static_cast<int>(mesh.face(h).idx())); };
+  std::size_t size() const { return parent_.size(); }
+  int of(Mesh::Face_index f) {
+    int g = static_cast<int>(f.idx());
+    while (parent_[g] != g)
+      g = parent_[g] = parent_[parent_[g]];
+    return g;
+  }
+  int of(Mesh::Halfedge_index h) { return of(mesh_.face(h)); }
 
-  // One face per group: its normal from any of its triangles, its boundary loop by walking the
-  // halfedges whose opposite lies in another group.
-  std::vector<bool> done(parent.size(), false);
-  const std::size_t halfedges = mesh.number_of_halfedges();
+ private:
+  const Mesh& mesh_;
+  std::vector<int> parent_;
+};
+
+/// A halfedge of group g's boundary (its opposite in another group), searching g's triangles.
+Mesh::Halfedge_index boundary_halfedge(const Mesh& mesh, CoplanarGroups& groups, int g) {
+  for (Mesh::Face_index t : mesh.faces()) {
+    if (groups.of(t) != g) continue;
+    for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(t), mesh))
+      if (groups.of(mesh.opposite(h)) != g) return h;
+  }
+  throw std::logic_error("hull features: a face group has no boundary");
+}
+
+/// Group g's boundary loop as input indices, from the boundary halfedge `start`, starting at
+/// its smallest index (not at whichever boundary halfedge came first).
+std::vector<int> boundary_loop(const Mesh& mesh, CoplanarGroups& groups, int g,
+                               Mesh::Halfedge_index start, const std::vector<int>& index) {
+  std::vector<int> loop;
+  Mesh::Halfedge_index h = start;
+  do {
+    loop.push_back(index[mesh.source(h).idx()]);
+    Mesh::Halfedge_index n = mesh.next(h);
+    while (groups.of(mesh.opposite(n)) == g)
+      n = mesh.next(mesh.opposite(n));
+    h = n;
+    if (loop.size() > mesh.number_of_halfedges())
+      throw std::logic_error("hull features: open face boundary");
+  } while (h != start);
+  std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+  return loop;
+}
+
+/// One face per group: its normal from any of its triangles, its boundary loop.
+void add_faces(const Mesh& mesh, CoplanarGroups& groups, const std::vector<int>& index,
+               HullFeatures& out) {
+  std::vector<bool> done(groups.size(), false);
   for (Mesh::Face_index f : mesh.faces()) {
-    const int g = find(static_cast<int>(f.idx()));
+    const int g = groups.of(f);
     if (done[g]) continue;
     done[g] = true;
     const Mesh::Halfedge_index h0 = mesh.halfedge(f);
-    const QVec p = exact(out.vertices[vertex_of(mesh.source(h0))]);
-    const QVec q = exact(out.vertices[vertex_of(mesh.target(h0))]);
-    const QVec r = exact(out.vertices[vertex_of(mesh.target(mesh.next(h0)))]);
+    const QVec p = exact(out.vertices[index[mesh.source(h0).idx()]]);
+    const QVec q = exact(out.vertices[index[mesh.target(h0).idx()]]);
+    const QVec r = exact(out.vertices[index[mesh.target(mesh.next(h0)).idx()]]);
     out.face_normals.push_back(canonical_normal(cross(q - p, r - p)));
-
-    // A boundary halfedge of the group: search the group's triangles from f.
-    Mesh::Halfedge_index start = Mesh::null_halfedge();
-    for (Mesh::Face_index t : mesh.faces()) {
-      if (find(static_cast<int>(t.idx())) != g) continue;
-      for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(t), mesh))
-        if (group(mesh.opposite(h)) != g) {
-          start = h;
-          break;
-        }
-      if (start != Mesh::null_halfedge()) break;
-    }
-    if (start == Mesh::null_halfedge())
-      throw std::logic_error("hull features: a face group has no boundary");
-    std::vector<int> loop;
-    Mesh::Halfedge_index h = start;
-    do {
-      loop.push_back(vertex_of(mesh.source(h)));
-      Mesh::Halfedge_index n = mesh.next(h);
-      while (group(mesh.opposite(n)) == g)
-        n = mesh.next(mesh.opposite(n));
-      h = n;
-      if (loop.size() > halfedges) throw std::logic_error("hull features: open face boundary");
-    } while (h != start);
-    // The loop starts at its smallest index, not at whichever boundary halfedge came first.
-    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
-    out.faces.push_back(std::move(loop));
+    out.faces.push_back(boundary_loop(mesh, groups, g, boundary_halfedge(mesh, groups, g), index));
   }
+}
 
+/// The edges between different faces, with their canonical directions.
+void add_edges(const Mesh& mesh, CoplanarGroups& groups, const std::vector<int>& index,
+               HullFeatures& out) {
   for (Mesh::Edge_index e : mesh.edges()) {
     const Mesh::Halfedge_index h = mesh.halfedge(e);
-    if (group(h) == group(mesh.opposite(h))) continue;  // inside a merged face
-    const int a = vertex_of(mesh.source(h)), b = vertex_of(mesh.target(h));
+    if (groups.of(h) == groups.of(mesh.opposite(h))) continue;  // inside a merged face
+    const int a = index[mesh.source(h).idx()], b = index[mesh.target(h).idx()];
     out.edges.push_back({std::min(a, b), std::max(a, b)});
     out.edge_directions.push_back(
         canonical_direction(exact(out.vertices[b]) - exact(out.vertices[a])));
   }
   std::sort(out.edges.begin(), out.edges.end());
   unique_directions(out.edge_directions);
+}
+
+void solid_features(HullFeatures& out) {
+  std::vector<Epick::Point_3> points;
+  points.reserve(out.vertices.size());
+  for (const Vec3& v : out.vertices)
+    points.emplace_back(v.x(), v.y(), v.z());
+  Mesh mesh;
+  CGAL::convex_hull_3(points.begin(), points.end(), mesh);
+  const std::vector<int> index = input_indices(mesh, out);
+  CoplanarGroups groups(mesh);
+  add_faces(mesh, groups, index, out);
+  add_edges(mesh, groups, index, out);
   sort_faces_by_normal(out);
 }
 
