@@ -68,9 +68,10 @@ std::optional<ExactClosest<I>> affine_closest(std::span<const Vec3Of<I>> w, std:
     // origin, with barycentric weights from Cramer's rule on [e1 e2 e3]·μ = −w0.
     const Vec3Of<I> e1 = w[idx[1]] - w0, e2 = w[idx[2]] - w0, e3 = w[idx[3]] - w0;
     const Vec3Of<I> minus_w0 = {-w0[0], -w0[1], -w0[2]};
-    I det = dot(e1, cross(e2, e3));
+    const Vec3Of<I> e23 = cross(e2, e3);
+    I det = dot(e1, e23);
     if (sgn(det) == 0) return std::nullopt;
-    I l1 = dot(minus_w0, cross(e2, e3));
+    I l1 = dot(minus_w0, e23);
     I l2 = dot(e1, cross(minus_w0, e3));
     I l3 = dot(e1, cross(e2, minus_w0));
     if (sgn(det) < 0) {
