@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "gjklab/exact/mesh_io.hpp"
+#include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/real_objects.hpp"
@@ -379,6 +380,60 @@ class ShapeCache {
   std::map<std::string, std::shared_ptr<const scene::ConvexShape>> cache_;
 };
 
+/// A registry algorithm that answers a distance, as the scene's narrow-phase query: cold, on the
+/// world hulls, default options. Where it reports no closest points, gjk-johnson's are used (the
+/// contact needs a point and a normal).
+scene::NarrowQuery registry_query(const Table& n, const std::string& name) {
+  const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
+  if (!info)
+    n.fail("algorithm",
+           "unknown algorithm '" + name + "'; valid: " + experiment::algorithm_names());
+  if (info->kind == experiment::AnswerKind::boolean)
+    n.fail("algorithm", "'" + name + "' answers no distance, which contacts need");
+  return {name, [info](const Polytope& a, const Polytope& b) {
+            const experiment::Outcome o = experiment::run_algorithm(*info, a, b, SweptRadii{},
+                                                                    experiment::AlgorithmOptions{});
+            DistanceResult r;
+            r.intersect = o.intersect;
+            r.distance = o.intersect ? 0.0 : o.distance.value_or(0.0);
+            r.iterations = o.iterations;
+            r.support_calls = o.support_calls;
+            r.termination = o.termination;
+            if (o.witness_a && o.witness_b) {
+              r.witness_a = *o.witness_a;
+              r.witness_b = *o.witness_b;
+            } else if (!o.intersect) {
+              const DistanceResult g = gjk_distance(a, b);
+              r.witness_a = g.witness_a;
+              r.witness_b = g.witness_b;
+            }
+            return r;
+          }};
+}
+
+/// A registry algorithm that reports a depth, as the scene's depth query (default options): its
+/// depth, normal and the midpoint of its deepest points (where it reports none, A's support
+/// point along the normal moved back by half the depth); none for a pair it calls separated
+/// or without a depth.
+scene::DepthQuery registry_depth_query(const Table& n, const std::string& name) {
+  const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
+  if (!info)
+    n.fail("depth_algorithm",
+           "unknown algorithm '" + name + "'; valid: " + experiment::algorithm_names());
+  if (!info->depth) n.fail("depth_algorithm", "'" + name + "' reports no penetration depth");
+  return {
+      name, [info](const Polytope& a, const Polytope& b) -> std::optional<scene::Penetration> {
+        const experiment::Outcome o =
+            experiment::run_algorithm(*info, a, b, SweptRadii{}, experiment::AlgorithmOptions{});
+        if (!o.intersect || !o.depth || !o.normal || !(o.normal->norm() > 0)) return std::nullopt;
+        const Vec3 normal = o.normal->normalized();
+        const Vec3 point = o.witness_a && o.witness_b
+                               ? Vec3(0.5 * (*o.witness_a + *o.witness_b))
+                               : Vec3(a.support(normal) - 0.5 * *o.depth * normal);
+        return scene::Penetration{*o.depth, normal, point, o.termination == Termination::converged};
+      }};
+}
+
 void read_settings(const Table& root, scene::WorldSettings& s) {
   const Table p = root.child("physics");
   p.allow_only({"gravity", "dt", "solver_iterations", "position_iterations", "contact_margin",
@@ -403,15 +458,22 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
 
   const Table n = root.child("narrow_phase");
-  n.allow_only({"algorithm", "warm_start", "measure_cold", "max_iterations", "threads"});
+  n.allow_only(
+      {"algorithm", "depth_algorithm", "warm_start", "measure_cold", "max_iterations", "threads"});
   const std::string name = n.string("algorithm", "gjk-johnson");
-  const auto a = scene::narrow_algorithm_from_string(name);
-  if (!a)
-    n.fail("algorithm", "'" + name +
-                            "' cannot run warm-started in a scene; valid: gjk-johnson, "
-                            "gjk-johnson-backup, gjk-sv, gjk-voronoi");
-  s.algorithm = *a;
-  s.warm_start = n.boolean("warm_start", true);
+  if (const auto a = scene::narrow_algorithm_from_string(name)) {
+    s.algorithm = *a;
+    s.warm_start = n.boolean("warm_start", true);
+  } else {
+    s.query = registry_query(n, name);
+    if (n.boolean("warm_start", false))
+      n.fail("warm_start", "'" + name +
+                               "' cannot run warm-started; the GJK distance variants can: "
+                               "gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi");
+    s.warm_start = false;
+  }
+  if (const std::string depth = n.string("depth_algorithm", ""); !depth.empty())
+    s.depth = registry_depth_query(n, depth);
   s.measure_cold = n.boolean("measure_cold", false);
   s.threads = static_cast<int>(n.integer("threads", 1, 1, 1024));
   s.gjk.max_iterations =

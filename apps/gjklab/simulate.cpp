@@ -515,7 +515,9 @@ void write_root(const H5& h, hid_t file, const SceneSetup& s, const std::string&
   number_attribute<double>(h, file, "dt", st.dt);
   number_attribute<double>(h, file, "contact_margin", st.contact_margin);
   string_attribute(h, file, "broad_phase", std::string(scene::to_string(st.broad_phase)));
-  string_attribute(h, file, "narrow_algorithm", std::string(scene::to_string(st.algorithm)));
+  string_attribute(h, file, "narrow_algorithm",
+                   st.query ? st.query->name : std::string(scene::to_string(st.algorithm)));
+  string_attribute(h, file, "depth_algorithm", st.depth ? st.depth->name : std::string("epa"));
   number_attribute<std::uint8_t>(h, file, "warm_start", st.warm_start ? 1 : 0);
 }
 

@@ -273,14 +273,32 @@ struct World::PairOutcome {
   Vec3 normal = Vec3::UnitZ();
 };
 
+std::optional<Penetration> World::penetration(const Polytope& pa, const Polytope& pb,
+                                              const DistanceResult& r) const {
+  if (settings_.depth) return settings_.depth->run(pa, pb);
+  // EPA starts from a GJK simplex that encloses the origin: the query's own, or a cold
+  // gjk-johnson's when the query was supplied (and has none).
+  DistanceResult start;
+  if (settings_.query) {
+    start = run_gjk(NarrowAlgorithm::gjk_johnson, pa, pb, {}, settings_.gjk);
+    if (!start.intersect) return std::nullopt;  // the two disagree: no simplex to start from
+  }
+  EpaPolytope ws;
+  const EpaResult e = epa_from_gjk(pa, pb, settings_.query ? start : r, EpaOptions{}, ws);
+  return Penetration{e.depth, e.normal, 0.5 * (e.witness_a + e.witness_b),
+                     e.termination == Termination::converged};
+}
+
 void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                     PairOutcome& out) const {
   const Polytope& pa = *world_hulls_[ia];
   const Polytope& pb = *world_hulls_[ib];
-  const std::span<const SimplexVertex> warm = settings_.warm_start
+  const std::span<const SimplexVertex> warm = settings_.warm_start && !settings_.query
                                                   ? std::span<const SimplexVertex>(simplex)
                                                   : std::span<const SimplexVertex>();
-  const DistanceResult r = run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
+  const DistanceResult r = settings_.query
+                               ? settings_.query->run(pa, pb)
+                               : run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
   out.a = ia;
   out.b = ib;
   out.iterations = r.iterations;
@@ -298,7 +316,9 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
     q.distance = r.distance;
   }
   if (settings_.measure_cold)
-    out.iterations_cold = run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
+    out.iterations_cold = settings_.query
+                              ? r.iterations  // a supplied query always runs cold
+                              : run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
   if (r.termination != Termination::converged) ++out.failed;
   const auto kept = r.simplex.vertices();
   simplex.assign(kept.begin(), kept.end());
@@ -313,12 +333,12 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
   Vec3 normal;
   ManifoldPoint single;
   if (r.intersect) {
-    EpaPolytope ws;
-    const EpaResult e = epa_from_gjk(pa, pb, r, EpaOptions{}, ws);
+    const std::optional<Penetration> p = penetration(pa, pb, r);
     out.epa = true;
-    if (e.termination != Termination::converged) ++out.failed;
-    normal = e.normal;
-    single = {0.5 * (e.witness_a + e.witness_b) + 0.5 * (ra - rb) * normal, e.depth + radii};
+    if (!p || !p->converged) ++out.failed;
+    if (!p) return;  // no depth for this pair: no contact rather than a guessed one
+    normal = p->normal;
+    single = {p->point + 0.5 * (ra - rb) * normal, p->depth + radii};
   } else {
     const Vec3 ab = r.witness_b - r.witness_a;
     const double n = ab.norm();

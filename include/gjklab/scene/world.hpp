@@ -24,12 +24,15 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
 #include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
 #include "gjklab/scene/body.hpp"
 #include "gjklab/scene/broadphase.hpp"
@@ -58,6 +61,31 @@ constexpr std::string_view to_string(NarrowAlgorithm a) {
 }
 std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name);
 
+/// A narrow-phase query the caller supplies, for algorithms the scene layer cannot name (the
+/// registry lies above it): `run` answers one pair of world hulls cold. Must be safe to call
+/// from several threads at once.
+struct NarrowQuery {
+  std::string name;  ///< recorded in archives
+  std::function<DistanceResult(const Polytope& a, const Polytope& b)> run;
+};
+
+/// The penetration of an intersecting pair: depth (length units, ≥ 0), the unit normal from A
+/// towards B (the direction in which B must move by depth), and a point midway between the
+/// deepest points.
+struct Penetration {
+  double depth = 0;
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 point = Vec3::Zero();
+  bool converged = true;
+};
+
+/// A depth query the caller supplies (a registry algorithm that reports a depth); nullopt when
+/// it gives none for the pair. Must be safe to call from several threads at once.
+struct DepthQuery {
+  std::string name;  ///< recorded in archives
+  std::function<std::optional<Penetration>(const Polytope& a, const Polytope& b)> run;
+};
+
 struct WorldSettings {
   Vec3 gravity = Vec3(0, 0, -9.81);  ///< length/s²
   double dt = 1.0 / 120.0;           ///< s
@@ -72,6 +100,11 @@ struct WorldSettings {
   /// Approach speed (length/s) below which restitution is ignored (resting contacts).
   double restitution_threshold = 0.5;
   NarrowAlgorithm algorithm = NarrowAlgorithm::gjk_johnson;
+  /// Set: this query answers every pair instead of `algorithm`, cold (warm_start is ignored);
+  /// intersecting pairs then take EPA from a cold gjk-johnson query unless `depth` is set.
+  std::optional<NarrowQuery> query;
+  /// Set: the depth of intersecting pairs comes from this query instead of EPA.
+  std::optional<DepthQuery> depth;
   GjkDistanceOptions gjk{};
   /// Start each query from the pair's previous simplex (false: every query cold).
   bool warm_start = true;
@@ -208,6 +241,10 @@ class World {
   /// previous simplex, which it replaces (safe to run for different pairs in parallel).
   void collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                PairOutcome& out) const;
+  /// The penetration of a pair the narrow-phase query found intersecting (r): the supplied
+  /// depth query's, else EPA's; nullopt when there is none.
+  std::optional<Penetration> penetration(const Polytope& pa, const Polytope& pb,
+                                         const DistanceResult& r) const;
   /// Appends a pair's contacts (with last step's impulses), counts and query record.
   void merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
              double& iterations_cold);
