@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "gjklab/exact/mesh_io.hpp"
+#include "gjklab/experiment/algorithm_options.hpp"
 #include "gjklab/experiment/algorithms.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/experiment/families.hpp"
@@ -380,19 +381,52 @@ class ShapeCache {
   std::map<std::string, std::shared_ptr<const scene::ConvexShape>> cache_;
 };
 
+/// The options of a registry algorithm from a table of its keys (`[narrow_phase.options]`,
+/// `[narrow_phase.depth_options]`), through the registry's own option rows: numbers, booleans,
+/// names and [x, y, z] directions; a key the algorithm does not take, or a bad value, fails
+/// with the key's line.
+experiment::AlgorithmOptions options_of(const Table& t, const std::string& algorithm) {
+  experiment::AlgorithmSpec spec{algorithm, algorithm, {}};
+  for (auto&& [k, v] : t.raw()) {
+    std::string text;
+    if (const auto i = v.value_exact<std::int64_t>()) {
+      text = std::to_string(*i);
+    } else if (const auto d = v.value_exact<double>()) {
+      text = experiment::round_trip(*d);
+    } else if (const auto b = v.value_exact<bool>()) {
+      text = *b ? "true" : "false";
+    } else if (const auto str = v.value_exact<std::string>()) {
+      text = *str;
+    } else if (const toml::array* a = v.as_array()) {
+      const auto xyz = t.numbers_of(*a, k.str(), 3);
+      text = experiment::round_trip(xyz[0]) + " " + experiment::round_trip(xyz[1]) + " " +
+             experiment::round_trip(xyz[2]);
+    } else {
+      t.fail(k.str(), "expected a number, a boolean, a name or [x, y, z]");
+    }
+    try {
+      experiment::set_option(spec, k.str(), text);
+    } catch (const std::invalid_argument& e) {
+      t.fail(k.str(), e.what());
+    }
+  }
+  return spec.options;
+}
+
 /// A registry algorithm that answers a distance, as the scene's narrow-phase query: cold, on the
-/// world hulls, default options. Where it reports no closest points, gjk-johnson's are used (the
+/// world hulls, with `options`. Where it reports no closest points, gjk-johnson's are used (the
 /// contact needs a point and a normal).
-scene::NarrowQuery registry_query(const Table& n, const std::string& name) {
+scene::NarrowQuery registry_query(const Table& n, const std::string& name,
+                                  const experiment::AlgorithmOptions& options) {
   const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
   if (!info)
     n.fail("algorithm",
            "unknown algorithm '" + name + "'; valid: " + experiment::algorithm_names());
   if (info->kind == experiment::AnswerKind::boolean)
     n.fail("algorithm", "'" + name + "' answers no distance, which contacts need");
-  return {name, [info](const Polytope& a, const Polytope& b) {
-            const experiment::Outcome o = experiment::run_algorithm(*info, a, b, SweptRadii{},
-                                                                    experiment::AlgorithmOptions{});
+  return {name, [info, options](const Polytope& a, const Polytope& b) {
+            const experiment::Outcome o =
+                experiment::run_algorithm(*info, a, b, SweptRadii{}, options);
             DistanceResult r;
             r.intersect = o.intersect;
             r.distance = o.intersect ? 0.0 : o.distance.value_or(0.0);
@@ -411,20 +445,21 @@ scene::NarrowQuery registry_query(const Table& n, const std::string& name) {
           }};
 }
 
-/// A registry algorithm that reports a depth, as the scene's depth query (default options): its
+/// A registry algorithm that reports a depth, as the scene's depth query (with `options`): its
 /// depth, normal and the midpoint of its deepest points (where it reports none, A's support
 /// point along the normal moved back by half the depth); none for a pair it calls separated
 /// or without a depth.
-scene::DepthQuery registry_depth_query(const Table& n, const std::string& name) {
+scene::DepthQuery registry_depth_query(const Table& n, const std::string& name,
+                                       const experiment::AlgorithmOptions& options) {
   const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
   if (!info)
     n.fail("depth_algorithm",
            "unknown algorithm '" + name + "'; valid: " + experiment::algorithm_names());
   if (!info->depth) n.fail("depth_algorithm", "'" + name + "' reports no penetration depth");
   return {
-      name, [info](const Polytope& a, const Polytope& b) -> std::optional<scene::Penetration> {
-        const experiment::Outcome o =
-            experiment::run_algorithm(*info, a, b, SweptRadii{}, experiment::AlgorithmOptions{});
+      name,
+      [info, options](const Polytope& a, const Polytope& b) -> std::optional<scene::Penetration> {
+        const experiment::Outcome o = experiment::run_algorithm(*info, a, b, SweptRadii{}, options);
         if (!o.intersect || !o.depth || !o.normal || !(o.normal->norm() > 0)) return std::nullopt;
         const Vec3 normal = o.normal->normalized();
         const Vec3 point = o.witness_a && o.witness_b
@@ -458,14 +493,14 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
 
   const Table n = root.child("narrow_phase");
-  n.allow_only(
-      {"algorithm", "depth_algorithm", "warm_start", "measure_cold", "max_iterations", "threads"});
+  n.allow_only({"algorithm", "depth_algorithm", "options", "depth_options", "warm_start",
+                "measure_cold", "max_iterations", "threads"});
   const std::string name = n.string("algorithm", "gjk-johnson");
   if (const auto a = scene::narrow_algorithm_from_string(name)) {
     s.algorithm = *a;
     s.warm_start = n.boolean("warm_start", true);
   } else {
-    s.query = registry_query(n, name);
+    s.query = registry_query(n, name, options_of(n.child("options"), name));
     if (n.boolean("warm_start", false))
       n.fail("warm_start", "'" + name +
                                "' cannot run warm-started; the GJK distance variants can: "
@@ -473,7 +508,13 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
     s.warm_start = false;
   }
   if (const std::string depth = n.string("depth_algorithm", ""); !depth.empty())
-    s.depth = registry_depth_query(n, depth);
+    s.depth = registry_depth_query(n, depth, options_of(n.child("depth_options"), depth));
+  else if (n.has("depth_options"))
+    n.fail("depth_options", "needs depth_algorithm");
+  if (!s.query && n.has("options"))
+    n.fail("options",
+           "only for an algorithm other than the GJK variants (which take "
+           "max_iterations)");
   s.measure_cold = n.boolean("measure_cold", false);
   s.threads = static_cast<int>(n.integer("threads", 1, 1, 1024));
   s.gjk.max_iterations =

@@ -339,3 +339,32 @@ position = [0, 0, 0.5]
             .find("key 'narrow_phase.warm_start': 'bullet-gjk' cannot run warm-started") !=
         std::string::npos);
 }
+
+TEST_CASE("scene files: the narrow phase's and the depth algorithm's options", "[unit][scene]") {
+  const std::string ball_on_ground = R"([scene]
+seed = 1
+[[static]]
+shape = "box"
+size = [20, 20, 1]
+position = [0, 0, -0.5]
+[[bodies]]
+shape = "sphere"
+position = [0, 0, 0.45]
+[narrow_phase]
+algorithm = "gjk-nesterov"
+)";
+  // One iteration is too few for the accelerated GJK to converge: the step counts the stops.
+  const cli::SceneSetup limited =
+      parse_scene(ball_on_ground + "[narrow_phase.options]\nmax_iterations = 1\n", "opt.toml");
+  const cli::SceneSetup plain = parse_scene(ball_on_ground, "opt.toml");
+  CHECK(limited.world->step().failed_queries > 0);
+  CHECK(plain.world->step().failed_queries == 0);
+  CHECK(error_of(ball_on_ground + "[narrow_phase.options]\nno_such_key = 1\n")
+            .find("key 'narrow_phase.options.no_such_key'") != std::string::npos);
+  CHECK(error_of("[narrow_phase]\nalgorithm = \"gjk-johnson\"\n[narrow_phase.options]\n"
+                 "max_iterations = 3\n")
+            .find("key 'narrow_phase.options': only for an algorithm other than") !=
+        std::string::npos);
+  CHECK(error_of("[narrow_phase]\n[narrow_phase.depth_options]\nmax_iterations = 3\n")
+            .find("key 'narrow_phase.depth_options': needs depth_algorithm") != std::string::npos);
+}
