@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gjklab/cli.hpp"
@@ -27,6 +28,14 @@ inline CliResult run_cli(const std::vector<std::string>& args, const std::string
   std::ostringstream out, err;
   const int status = cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
   return {status, out.str(), err.str()};
+}
+
+/// The same, returning the exit status and leaving the outputs in out and err.
+inline int run_cli(const std::vector<std::string>& args, std::string& out, std::string& err) {
+  CliResult r = run_cli(args);
+  out = std::move(r.out);
+  err = std::move(r.err);
+  return r.status;
 }
 
 /// A fresh folder under the system's temporary directory, removed at the end of the scope.

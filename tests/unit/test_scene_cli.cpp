@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "../support/cli_run.hpp"
+#include "../support/scene_errors.hpp"
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
@@ -26,6 +28,9 @@
 namespace fs = std::filesystem;
 using gjklab::cli::parse_scene;
 using gjklab::experiment::ConfigError;
+
+using gjklab::testing::run_cli;
+const auto error_of = &gjklab::testing::scene_error_of;  // const: internal linkage
 
 namespace {
 
@@ -51,27 +56,6 @@ placement = "stack"
 position = [0, 0, 0.6]
 spacing = 1.1
 )";
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-int run_cli(std::vector<std::string> args, std::string& out_text, std::string& err_text) {
-  std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args)
-    argv.push_back(a.c_str());
-  std::istringstream in;
-  std::ostringstream out, err;
-  const int status = gjklab::cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
-  out_text = out.str();
-  err_text = err.str();
-  return status;
-}
 
 }  // namespace
 

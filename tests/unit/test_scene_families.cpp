@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_run.hpp"
+#include "../support/scene_errors.hpp"
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/config.hpp"
@@ -27,31 +29,13 @@ using namespace gjklab;
 using gjklab::cli::parse_scene;
 using gjklab::experiment::ConfigError;
 
+using gjklab::testing::run_cli;
+const auto error_of = &gjklab::testing::scene_error_of;  // const: internal linkage
+
 namespace {
 
 std::vector<Vec3> cloud_of(const Polytope& p) {
   return {p.vertices().begin(), p.vertices().end()};
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-int run_cli(std::vector<std::string> args, std::string& out_text, std::string& err_text) {
-  std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args)
-    argv.push_back(a.c_str());
-  std::istringstream in;
-  std::ostringstream out, err;
-  const int status = cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
-  out_text = out.str();
-  err_text = err.str();
-  return status;
 }
 
 /// A scene source named as if it lay in tests/data, so that relative mesh paths resolve there.

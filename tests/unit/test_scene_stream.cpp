@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_run.hpp"
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/config.hpp"
@@ -17,6 +18,8 @@
 
 namespace fs = std::filesystem;
 using namespace gjklab;
+
+using gjklab::testing::run_cli;
 
 namespace {
 
@@ -47,18 +50,6 @@ placement = "stack"
 position = [2, 0, 0.6]
 spacing = 1.05
 )";
-
-int run_cli(std::vector<std::string> args, std::string& out_text, std::string& err_text) {
-  std::vector<const char*> argv{"gjklab"};
-  for (const auto& a : args)
-    argv.push_back(a.c_str());
-  std::istringstream in;
-  std::ostringstream out, err;
-  const int status = cli::run(static_cast<int>(argv.size()), argv.data(), in, out, err);
-  out_text = out.str();
-  err_text = err.str();
-  return status;
-}
 
 }  // namespace
 
