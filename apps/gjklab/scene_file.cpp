@@ -285,18 +285,10 @@ std::vector<std::vector<Vec3>> read_meshes(const Table& t) {
   std::filesystem::path resolved(path);
   if (resolved.is_relative()) resolved = std::filesystem::path(t.file()).parent_path() / resolved;
   std::vector<std::filesystem::path> files;
-  std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec)) {
-    for (const auto& entry : std::filesystem::directory_iterator(resolved, ec))
-      if (entry.is_regular_file() && exact::is_mesh_file(entry.path()))
-        files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    if (files.empty())
-      t.fail("path", resolved.string() + " holds no .off, .obj, .ply or .stl file");
-  } else if (std::filesystem::exists(resolved, ec)) {
-    files.push_back(resolved);
-  } else {
-    t.fail("path", resolved.string() + ": no such file or folder");
+  try {
+    files = exact::mesh_files(resolved);
+  } catch (const std::runtime_error& e) {
+    t.fail("path", e.what());
   }
   std::vector<std::vector<Vec3>> meshes;
   const Vec3 s = size_of(t);

@@ -176,4 +176,20 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
   return cloud;
 }
 
+std::vector<std::filesystem::path> mesh_files(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec)) {
+    if (!std::filesystem::exists(path, ec))
+      throw std::runtime_error(path.string() + ": no such file or folder");
+    return {path};
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(path, ec))
+    if (entry.is_regular_file() && is_mesh_file(entry.path())) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty())
+    throw std::runtime_error(path.string() + " holds no .off, .obj, .ply or .stl file");
+  return files;
+}
+
 }  // namespace gjklab::exact

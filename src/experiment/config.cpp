@@ -464,19 +464,10 @@ void read_meshes(const Section& s, const std::string& experiment_file, FamilySpe
   if (resolved.is_relative())
     resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
   std::vector<std::filesystem::path> files;
-  std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec)) {
-    for (const auto& entry : std::filesystem::directory_iterator(resolved, ec))
-      if (entry.is_regular_file() && exact::is_mesh_file(entry.path()))
-        files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    if (files.empty())
-      s.fail(*s.find("path"), "path",
-             resolved.string() + " holds no .off, .obj, .ply or .stl file");
-  } else if (std::filesystem::exists(resolved, ec)) {
-    files.push_back(resolved);
-  } else {
-    s.fail(*s.find("path"), "path", resolved.string() + ": no such file or folder");
+  try {
+    files = exact::mesh_files(resolved);
+  } catch (const std::runtime_error& e) {
+    s.fail(*s.find("path"), "path", e.what());
   }
   for (const auto& file : files) {
     try {

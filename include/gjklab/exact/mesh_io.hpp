@@ -16,4 +16,8 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file);
 /// True for the extensions read_mesh_vertices reads (case-insensitive).
 bool is_mesh_file(const std::filesystem::path& file);
 
+/// The mesh files `path` names: the file itself, or a folder's mesh files in name order.
+/// Throws std::runtime_error naming the path when it does not exist or the folder holds none.
+std::vector<std::filesystem::path> mesh_files(const std::filesystem::path& path);
+
 }  // namespace gjklab::exact
