@@ -1,0 +1,65 @@
+// The archive target's reading worker (fuzz/archive.cpp): the first of the two reads that
+// experiment::read_archive_isolated makes, kept in one long-lived process instead of a fork per
+// input. Built with ASan and UBSan like the target, without libFuzzer.
+//
+// Usage: fuzz_archive_worker FILE. For each byte read on standard input it reads FILE with
+// experiment::read_archive (what read_archive_isolated's child runs) and answers one byte on
+// standard output: 'r' read, 'e' an exception (the child's failure, an ArchiveError for the
+// user). It ends at the end of its input. Anything the reader prints goes to standard error.
+// How it ends otherwise, as the target sees it:
+//  - killed by a signal: libhdf5 crashed on the file (as read_archive_isolated's child would),
+//    or a sanitizer report whose first frame is in libhdf5 (raised as SIGSEGV, as the same
+//    read segfaults in the program);
+//  - exit status kSanitizerReport: any other sanitizer report (our reader's code, undefined
+//    behaviour), printed on standard error first: a finding.
+#include <sanitizer/asan_interface.h>
+#include <sanitizer/common_interface_defs.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <exception>
+#include <filesystem>
+
+#include "gjklab/experiment/archive.hpp"
+#include "libhdf5_report.hpp"
+
+namespace {
+
+constexpr int kSanitizerReport = 77;  ///< the exit status for a finding (fuzz/archive.cpp)
+
+bool report_in_libhdf5 = false;
+
+void on_report(const char* report) {
+  report_in_libhdf5 = gjklab::fuzz::report_is_in_libhdf5(report);
+}
+
+void on_death() {
+  if (report_in_libhdf5) {
+    ::signal(SIGSEGV, SIG_DFL);
+    ::raise(SIGSEGV);
+  }
+  ::_exit(kSanitizerReport);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) return 2;
+  const std::filesystem::path path = argv[1];
+  // Answers go to the original standard output; the reader's own output, if any, to stderr.
+  const int answers = ::dup(STDOUT_FILENO);
+  if (answers < 0 || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) return 2;
+  __asan_set_error_report_callback(on_report);
+  __sanitizer_set_death_callback(on_death);
+  char request;
+  while (::read(STDIN_FILENO, &request, 1) == 1) {
+    char answer = 'r';
+    try {
+      (void)gjklab::experiment::read_archive(path);
+    } catch (const std::exception&) {
+      answer = 'e';
+    }
+    if (::write(answers, &answer, 1) != 1) break;
+  }
+  ::_exit(0);  // no leak check at the end: the target checks leaks in its own process
+}
