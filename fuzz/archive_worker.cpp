@@ -12,13 +12,19 @@
 //    read segfaults in the program);
 //  - exit status kSanitizerReport: any other sanitizer report (our reader's code, undefined
 //    behaviour), printed on standard error first: a finding.
+// The target starts it with ASan's symbolize=0 (frames as addresses; see frames_in_libhdf5). For
+// a finding's report with names: `printf x | fuzz_archive_worker FILE` on the saved input.
+#include <dlfcn.h>
 #include <sanitizer/asan_interface.h>
 #include <sanitizer/common_interface_defs.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "gjklab/experiment/archive.hpp"
 #include "libhdf5_report.hpp"
@@ -29,8 +35,36 @@ constexpr int kSanitizerReport = 77;  ///< the exit status for a finding (fuzz/a
 
 bool report_in_libhdf5 = false;
 
+/// Whether the report's first frame outside the sanitizer runtime and the C library is in
+/// libhdf5, from the frames' addresses: the worker runs with symbolize=0 (fuzz/archive.cpp),
+/// since starting the symbolizer in every worker that dies on a libhdf5 crash (a few in a
+/// hundred inputs) took longer than all the reads. The runtime's functions (interceptors,
+/// __asan_*) are the executable's exported symbols; gjklab's own functions are not exported,
+/// so dladdr names none for them.
+bool frames_in_libhdf5(std::string_view report) {
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  for (std::size_t at = report.find("    #"); at != std::string_view::npos;
+       at = report.find("    #", at + 1)) {
+    const std::size_t hex = report.find("0x", at);
+    if (hex == std::string_view::npos) return false;
+    const auto pc = std::strtoull(std::string(report.substr(hex, 18)).c_str(), nullptr, 16);
+    Dl_info info{};
+    if (pc == 0 || ::dladdr(reinterpret_cast<void*>(pc), &info) == 0 || !info.dli_fname)
+      return false;
+    const std::string_view module = info.dli_fname;
+    if (module.find("libhdf5") != std::string_view::npos) return true;
+    if (module.find("libc.so") != std::string_view::npos) continue;
+    const bool in_self = std::filesystem::path(module) == self || module == "" ||
+                         std::filesystem::weakly_canonical(std::string(module)) == self;
+    if (in_self && info.dli_sname) continue;  // the sanitizer runtime
+    return false;
+  }
+  return false;
+}
+
 void on_report(const char* report) {
-  report_in_libhdf5 = gjklab::fuzz::report_is_in_libhdf5(report);
+  // A symbolised report (symbolize=1 given) names the frames; otherwise use the addresses.
+  report_in_libhdf5 = gjklab::fuzz::report_is_in_libhdf5(report) || frames_in_libhdf5(report);
 }
 
 void on_death() {
