@@ -17,8 +17,9 @@
 // with a bound per point; the few points within their bound of a plane (coplanar vertices of a
 // face, say) are decided exactly in integers. The nearest doubles of the distance and of the
 // witness points are taken when their interval lies inside one double's rounding cell. Any
-// undecided step gives nullopt, and the exact certificate decides instead; so do simplices of
-// four pairs (an intersecting pair's tetrahedron), and one pair with a0 = b0 is a shared point.
+// undecided step gives nullopt, and the exact certificate decides instead. Simplices of four
+// pairs (an intersecting pair's tetrahedron) are decided in double-word arithmetic
+// (filtered_tetrahedron.cpp), and one pair with a0 = b0 is a shared point.
 #include "filtered_distance.hpp"
 
 #include <gmpxx.h>
@@ -719,6 +720,18 @@ DistanceCertificate answer(const Feature& f, const Nearest& nearest, bool inters
   return out;
 }
 
+/// Four pairs: the hulls intersect when the origin is decided strictly inside the pairs'
+/// tetrahedron, with its common point as both witnesses.
+std::optional<DistanceCertificate> tetrahedron_certificate(const Feature& f) {
+  const std::optional<Vec3> common = enclosed_origin_witness(f.a, f.b);
+  if (!common) return std::nullopt;
+  DistanceCertificate out;
+  out.intersect = true;
+  out.witness_a = out.witness_b = *common;
+  out.feature.simplex.assign(f.pairs.begin(), f.pairs.end());
+  return out;
+}
+
 }  // namespace
 
 std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec3> a,
@@ -726,10 +739,7 @@ std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec
                                                              const DistanceHint& hint) {
   const std::optional<Feature> f = feature_of(a, b, hint);
   if (!f) return std::nullopt;
-  // Four pairs enclose the origin: its barycentric weights in long double are too coarse
-  // for the common point's rounding about as often as not, and the exact certificate is then
-  // cheaper than a failed attempt and the exact rounding together (measured on the demo shapes).
-  if (f->size == 4) return std::nullopt;
+  if (f->size == 4) return tetrahedron_certificate(*f);
   if (f->size == 1 && f->a[0] == f->b[0]) {  // a shared point: intersecting
     Nearest same;
     set_witnesses(*f, {}, AVec{}, same);

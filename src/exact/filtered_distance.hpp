@@ -29,6 +29,13 @@ std::optional<DistanceCertificate> certify_distance_filtered(std::span<const Vec
 std::optional<Vec3> nearest_weighted_sum(std::span<const long double> weights,
                                          std::span<const Vec3> points);
 
+/// The nearest doubles of the hulls' common point Σ λ_k a_k = Σ λ_k b_k, when the points
+/// a_k − b_k enclose the origin strictly (every barycentric weight λ_k > 0) and a double-word
+/// evaluation with a proven error bound decides that and each coordinate's rounding
+/// (filtered_tetrahedron.cpp); nullopt otherwise (the origin on a face, a flat tetrahedron, a
+/// rounding too close to call, a coordinate out of the normal range).
+std::optional<Vec3> enclosed_origin_witness(std::span<const Vec3, 4> a, std::span<const Vec3, 4> b);
+
 /// The exact certificate alone: exact GJK from the hint for at most max_steps steps
 /// (distance_certificate.cpp). certify_distance tries the filtered one first.
 std::optional<DistanceCertificate> certify_distance_exact(std::span<const Vec3> a,

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -198,4 +199,113 @@ TEST_CASE("long double witness rounding: right or undecided, never wrong", "[cer
     }
   }
   CHECK(decided > 15000);
+}
+
+TEST_CASE("filtered intersection certificate: the exact certificate's answer on GJK tetrahedra",
+          "[certificate][exact]") {
+  // Overlapping pairs, whose GJK hints are mostly tetrahedra around the origin: the common
+  // point's rounding in double-word arithmetic equals the exact one, at every scale.
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> offset(0.0, 1.2);
+  const double scales[] = {1.0, 1e-150, 1e150, 3.0e-7};
+  int tetrahedra = 0, filtered = 0, plain_tetrahedra = 0, plain_filtered = 0;
+  for (int round = 0; round < 1500; ++round) {
+    const int family = round % 3;
+    const double size = scales[(round / 3) % 4];
+    const int n = 4 + static_cast<int>(rng() % 60);
+    const Cloud a = cloud(rng, family, n, Vec3::Zero(), size);
+    const Cloud b = cloud(rng, family, n, Vec3(offset(rng), 0.25, 0.1) * size, size);
+    const DistanceHint hint = gjk_hint(a, b);
+    if (hint.simplex.size() != 4) continue;
+    const bool plain = family == 0 && size == 1.0;
+    ++tetrahedra;
+    plain_tetrahedra += plain;
+    const auto f = certify_distance_filtered(a, b, hint);
+    if (!f) continue;
+    ++filtered;
+    plain_filtered += plain;
+    INFO("round " << round << ", family " << family << ", scale " << size);
+    const auto e = certify_distance_exact(a, b, hint, 0);
+    REQUIRE(e);
+    CHECK(f->intersect);
+    require_same(*f, *e);
+    if (round % 10 == 0) CHECK(qp(a, b).intersect);
+  }
+  CHECK(tetrahedra > 300);
+  CHECK(plain_filtered >= plain_tetrahedra * 95 / 100);
+  CHECK(filtered >= tetrahedra / 2);
+}
+
+TEST_CASE("filtered intersection certificate: four-pair hints that do not enclose the origin",
+          "[certificate][exact]") {
+  // Random four pairs, on overlapping and on separated clouds: a certified intersection must
+  // be one (the QP agrees) with the exact certificate's common point; most are declined.
+  std::mt19937_64 rng(17);
+  int rejected = 0, certified = 0;
+  for (int round = 0; round < 800; ++round) {
+    const int n = 4 + static_cast<int>(rng() % 12);
+    const double apart = round % 2 == 0 ? 0.3 : 2.5;
+    const Cloud a = cloud(rng, round % 3, n, Vec3::Zero(), 1);
+    const Cloud b = cloud(rng, round % 3, n, Vec3(apart, 0.2, 0), 1);
+    DistanceHint hint;
+    while (hint.simplex.size() < 4) {
+      const exact::IndexPair p{static_cast<std::int32_t>(rng() % n),
+                               static_cast<std::int32_t>(rng() % n)};
+      if (std::find(hint.simplex.begin(), hint.simplex.end(), p) == hint.simplex.end())
+        hint.simplex.push_back(p);
+    }
+    const auto f = certify_distance_filtered(a, b, hint);
+    if (!f) {
+      ++rejected;
+      continue;
+    }
+    ++certified;
+    INFO("round " << round);
+    CHECK(f->intersect);
+    CHECK(qp(a, b).intersect);
+    const auto e = certify_distance_exact(a, b, hint, 0);
+    REQUIRE(e);
+    require_same(*f, *e);
+  }
+  CHECK(rejected > 400);
+  CHECK(certified > 0);
+}
+
+TEST_CASE("filtered intersection certificate: a common point on a rounding midpoint",
+          "[certificate][exact]") {
+  // W_k = a_k − b_k form a regular tetrahedron centred on the origin, so every weight is 1/4
+  // and p_x = (1 + 1 + 2·(1 + 2^-52)) / 4 = 1 + 2^-53, halfway between 1 and its successor:
+  // the filtered certificate cannot prove the rounding and must decline; exactly, the tie goes
+  // to the even neighbour, 1. Moving b_3 along x by t unbalances the weights (the x rows of
+  // Σ λ_k W_k = 0 no longer split them in halves), which moves p_x off the midpoint by about
+  // t·2^-54: decided in double-word arithmetic for t ≥ 2^-40, equal to the exact rounding; at
+  // t = 2^-52 the offset is below the evaluation's error bound, and it may decline.
+  const double up = 1 + 0x1p-52;
+  const std::array<Vec3, 4> w = {Vec3(0.5, 1, 1), Vec3(0.5, -1, -1), Vec3(-0.5, 1, -1),
+                                 Vec3(-0.5, -1, 1)};
+  const std::array<double, 4> x = {1, 1, up, up};
+  Cloud a, b;
+  for (int k = 0; k < 4; ++k) {
+    a.emplace_back(x[k], 0.75, 0.75);
+    b.push_back(a.back() - w[k]);
+    REQUIRE(a.back() - b.back() == w[k]);  // exact differences
+  }
+  const DistanceHint hint{{{0, 0}, {1, 1}, {2, 2}, {3, 3}}};
+  CHECK_FALSE(certify_distance_filtered(a, b, hint));
+  const auto midpoint = exact::certify_distance(a, b, hint);
+  REQUIRE(midpoint);
+  CHECK(midpoint->intersect);
+  CHECK(midpoint->witness_a == Vec3(1, 0.75, 0.75));
+
+  for (const double tilt : {0x1p-40, -0x1p-40, 0x1p-20, 0x1p-52, -0x1p-52}) {
+    Cloud tilted_b = b;
+    tilted_b[3].x() += tilt;
+    INFO("tilt " << tilt);
+    const auto f = certify_distance_filtered(a, tilted_b, hint);
+    const auto e = certify_distance_exact(a, tilted_b, hint, 0);
+    REQUIRE(e);
+    CHECK(e->witness_a.x() == (tilt > 0 ? 1.0 : up));  // off the midpoint, to either side
+    if (std::fabs(tilt) >= 0x1p-40) REQUIRE(f);
+    if (f) require_same(*f, *e);
+  }
 }
