@@ -480,7 +480,9 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   b.allow_only({"kind", "grid_cell_size"});
   const std::string kind = b.string("kind", std::string(to_string(s.broad_phase)));
   const auto k = scene::broad_phase_from_string(kind);
-  if (!k) b.fail("kind", "unknown broad phase '" + kind + "'; valid: all-pairs, grid, sap");
+  if (!k)
+    b.fail("kind",
+           "unknown broad phase '" + kind + "'; valid: " + names_list(scene::kBroadPhaseKindNames));
   s.broad_phase = *k;
   s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
 
@@ -495,8 +497,8 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
     s.query = registry_query(n, name, options_of(n.child("options"), name));
     if (n.boolean("warm_start", false))
       n.fail("warm_start", "'" + name +
-                               "' cannot run warm-started; the GJK distance variants can: "
-                               "gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi");
+                               "' cannot run warm-started; the GJK distance variants can: " +
+                               names_list(scene::kNarrowAlgorithmNames));
     s.warm_start = false;
   }
   if (const std::string depth = n.string("depth_algorithm", ""); !depth.empty())

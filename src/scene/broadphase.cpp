@@ -9,13 +9,6 @@ namespace gjklab::scene {
 
 using detail::ordered;
 
-std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name) {
-  for (BroadPhaseKind k :
-       {BroadPhaseKind::all_pairs, BroadPhaseKind::grid, BroadPhaseKind::sweep_and_prune})
-    if (to_string(k) == name) return k;
-  return std::nullopt;
-}
-
 void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
   out.clear();
   const auto n = static_cast<std::uint32_t>(boxes.size());

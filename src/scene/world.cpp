@@ -14,13 +14,6 @@
 
 namespace gjklab::scene {
 
-std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name) {
-  for (NarrowAlgorithm a : {NarrowAlgorithm::gjk_johnson, NarrowAlgorithm::gjk_johnson_backup,
-                            NarrowAlgorithm::gjk_sv, NarrowAlgorithm::gjk_voronoi})
-    if (to_string(a) == name) return a;
-  return std::nullopt;
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

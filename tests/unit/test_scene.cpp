@@ -245,7 +245,8 @@ TEST_CASE("scene: Bullet's dbvt broad phase gives the all-pairs set", "[unit][sc
 }
 
 TEST_CASE("scene: broad phase names round-trip", "[unit][scene]") {
-  for (auto k : {BroadPhaseKind::all_pairs, BroadPhaseKind::grid, BroadPhaseKind::sweep_and_prune})
+  for (auto k : values_of(kBroadPhaseKindNames))
     CHECK(broad_phase_from_string(to_string(k)) == k);
+  CHECK(to_string(BroadPhaseKind::sweep_and_prune) == "sap");
   CHECK_FALSE(broad_phase_from_string("octree"));
 }

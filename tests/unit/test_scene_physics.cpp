@@ -224,9 +224,9 @@ TEST_CASE("scene physics: settings out of range are refused", "[unit][scene]") {
   s = {};
   s.baumgarte = 2;
   CHECK_THROWS_AS(World(s), std::invalid_argument);
-  for (auto a : {NarrowAlgorithm::gjk_johnson, NarrowAlgorithm::gjk_johnson_backup,
-                 NarrowAlgorithm::gjk_sv, NarrowAlgorithm::gjk_voronoi})
+  for (auto a : values_of(kNarrowAlgorithmNames))
     CHECK(narrow_algorithm_from_string(to_string(a)) == a);
+  CHECK(to_string(NarrowAlgorithm::gjk_johnson_backup) == "gjk-johnson-backup");
   CHECK_FALSE(narrow_algorithm_from_string("gjk-bool"));
 }
 

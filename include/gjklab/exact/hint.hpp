@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "gjklab/geometry/enum_names.hpp"
+
 namespace gjklab::exact {
 
 /// The point a_i − b_j of the Minkowski difference A − B, by its vertex indices in A and B.
@@ -39,16 +41,16 @@ enum class AnswerMethod : std::uint8_t {
   none,       ///< not computed (a depth that was not asked for, or of a separated pair)
 };
 
+inline constexpr auto kAnswerMethodNames = std::to_array<EnumName<AnswerMethod>>({
+    {AnswerMethod::certified, "certified"},
+    {AnswerMethod::qp, "qp"},
+    {AnswerMethod::none, "none"},
+});
+static_assert(in_value_order(kAnswerMethodNames) &&
+              ends_at(kAnswerMethodNames, AnswerMethod::none));
+
 constexpr std::string_view to_string(AnswerMethod m) {
-  switch (m) {
-    case AnswerMethod::certified:
-      return "certified";
-    case AnswerMethod::qp:
-      return "qp";
-    case AnswerMethod::none:
-      return "none";
-  }
-  return "unknown";
+  return name_of(kAnswerMethodNames, m);
 }
 
 }  // namespace gjklab::exact

@@ -5,6 +5,7 @@
 // the tests compare them with ==. Pairs of two static bodies are the caller's to drop.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab::scene {
@@ -34,18 +36,20 @@ enum class BroadPhaseKind : std::uint8_t {
   sweep_and_prune,  ///< sort along one axis, sweep within bands across the other two
 };
 
+inline constexpr auto kBroadPhaseKindNames = std::to_array<EnumName<BroadPhaseKind>>({
+    {BroadPhaseKind::all_pairs, "all-pairs"},
+    {BroadPhaseKind::grid, "grid"},
+    {BroadPhaseKind::sweep_and_prune, "sap"},
+});
+static_assert(in_value_order(kBroadPhaseKindNames) &&
+              ends_at(kBroadPhaseKindNames, BroadPhaseKind::sweep_and_prune));
+
 constexpr std::string_view to_string(BroadPhaseKind k) {
-  switch (k) {
-    case BroadPhaseKind::all_pairs:
-      return "all-pairs";
-    case BroadPhaseKind::grid:
-      return "grid";
-    case BroadPhaseKind::sweep_and_prune:
-      return "sap";
-  }
-  return "unknown";
+  return name_of(kBroadPhaseKindNames, k);
 }
-std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name);
+inline std::optional<BroadPhaseKind> broad_phase_from_string(std::string_view name) {
+  return value_named(kBroadPhaseKindNames, name);
+}
 
 /// The reference: every pair tested.
 void all_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);

@@ -31,6 +31,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
@@ -46,20 +47,21 @@ enum class NarrowAlgorithm : std::uint8_t {
   gjk_sv,              ///< "gjk-sv"
   gjk_voronoi,         ///< "gjk-voronoi"
 };
+inline constexpr auto kNarrowAlgorithmNames = std::to_array<EnumName<NarrowAlgorithm>>({
+    {NarrowAlgorithm::gjk_johnson, "gjk-johnson"},
+    {NarrowAlgorithm::gjk_johnson_backup, "gjk-johnson-backup"},
+    {NarrowAlgorithm::gjk_sv, "gjk-sv"},
+    {NarrowAlgorithm::gjk_voronoi, "gjk-voronoi"},
+});
+static_assert(in_value_order(kNarrowAlgorithmNames) &&
+              ends_at(kNarrowAlgorithmNames, NarrowAlgorithm::gjk_voronoi));
+
 constexpr std::string_view to_string(NarrowAlgorithm a) {
-  switch (a) {
-    case NarrowAlgorithm::gjk_johnson:
-      return "gjk-johnson";
-    case NarrowAlgorithm::gjk_johnson_backup:
-      return "gjk-johnson-backup";
-    case NarrowAlgorithm::gjk_sv:
-      return "gjk-sv";
-    case NarrowAlgorithm::gjk_voronoi:
-      return "gjk-voronoi";
-  }
-  return "unknown";
+  return name_of(kNarrowAlgorithmNames, a);
 }
-std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name);
+inline std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name) {
+  return value_named(kNarrowAlgorithmNames, name);
+}
 
 /// A narrow-phase query the caller supplies, for algorithms the scene layer cannot name (the
 /// registry lies above it): `run` answers one pair of world hulls cold. Must be safe to call
