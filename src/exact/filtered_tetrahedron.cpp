@@ -88,9 +88,10 @@ double lower(double x) {
   const DoubleWord r = n - d * c;  // (n/d − c)·d
   double below, above;
   half_gaps(c, below, above);
-  const double slack = std::fabs(r.lo) + r.err;
+  // Bounds of the exact r and d; each sum's own rounding is covered by the 2^-50 margins.
+  const double slack = upper(std::fabs(r.lo) + r.err);
   const double r_max = upper(r.hi + slack), r_min = lower(r.hi - slack);
-  const double d_min = lower(d.hi - (std::fabs(d.lo) + d.err));
+  const double d_min = lower(d.hi - upper(std::fabs(d.lo) + d.err));
   if (!(d_min > 0)) return std::nullopt;
   // −below·d < r < above·d; the products by powers of two are exact in this range.
   if (r_max < lower(above * d_min) && -r_min < lower(below * d_min)) return c;
