@@ -9,6 +9,7 @@
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"
 #include "gjklab/run.hpp"
+#include "gjklab/schema.hpp"
 #include "gjklab/simulate.hpp"
 
 namespace gjklab::cli {
@@ -31,6 +32,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   auto* hunt = add_hunt_command(app, hunt_args);
   SimulateArgs simulate_args;
   auto* simulate = add_simulate_command(app, simulate_args);
+  SchemaArgs schema_args;
+  auto* schema = add_schema_command(app, schema_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -48,6 +51,7 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   if (bench->parsed()) return run_bench_command(bench_args, out, err);
   if (hunt->parsed()) return run_hunt_command(hunt_args, out, err);
   if (simulate->parsed()) return run_simulate_command(simulate_args, out, err);
+  if (schema->parsed()) return run_schema_command(schema_args, out, err);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance())
       out << name << ": " << value << "\n";

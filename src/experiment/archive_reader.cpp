@@ -37,10 +37,10 @@ struct Reader {
 
   /// Rows of a group up to the last checkpoint: an incomplete run is read up to it, and rows
   /// written after it (a write cut off by a kill) are ignored. any_rows when complete.
-  hsize_t committed(const std::string& attribute) const {
-    return !complete && h5::has_attr(cx, root, "/", attribute)
-               ? h5::read_attr_u64(cx, root, "/", attribute)
-               : h5::any_rows;
+  hsize_t committed(std::string_view attribute) const {
+    const std::string name(attribute);
+    return !complete && h5::has_attr(cx, root, "/", name) ? h5::read_attr_u64(cx, root, "/", name)
+                                                          : h5::any_rows;
   }
 };
 
@@ -140,35 +140,26 @@ void read_header(const Reader& in, Archive& a) {
   const h5::Context& cx = in.cx;
   const hid_t r = in.root;
   ArchiveHeader& h = a.header;
-  h.experiment_name = h5::read_attr_string(cx, r, "/", "experiment_name");
-  h.experiment_text = h5::read_attr_string(cx, r, "/", "experiment_text");
-  h.seed = h5::read_attr_u64(cx, r, "/", "seed");
-  h.cases_planned = h5::read_attr_u64(cx, r, "/", "cases_planned");
-  h.start_time = h5::read_attr_string(cx, r, "/", "start_time");
-  h.oracle = h5::read_attr_u8(cx, r, "/", "oracle") != 0;
-  h.touching_band = h5::read_attr_f64(cx, r, "/", "touching_band");
-  h.family_names = h5::read_attr_strings(cx, r, "/", "family_names");
-  h.algorithm_names = h5::read_attr_strings(cx, r, "/", "algorithm_names");
+  schema::read_header_attributes(cx, r, h);
   // A run that stopped before finish() has neither: it is incomplete.
-  if (h5::has_attr(cx, r, "/", "end_time"))
-    a.end_time = h5::read_attr_string(cx, r, "/", "end_time");
-  if (h5::has_attr(cx, r, "/", "complete"))
-    a.complete = h5::read_attr_u8(cx, r, "/", "complete") != 0;
+  const std::string end_time(schema::attribute::end_time);
+  const std::string complete(schema::attribute::complete);
+  if (h5::has_attr(cx, r, "/", end_time)) a.end_time = h5::read_attr_string(cx, r, "/", end_time);
+  if (h5::has_attr(cx, r, "/", complete)) a.complete = h5::read_attr_u8(cx, r, "/", complete) != 0;
   for (const std::string& key : h5::attr_names(cx, r, "/")) {
     if (is_root_attribute(key)) continue;
     if (h5::attr_class(cx, r, "/", key) != H5T_STRING)
       cx.error("attribute '" + key + "' of / is not a string");
     h.provenance.emplace_back(key, h5::read_attr_string(cx, r, "/", key));
   }
-  if (h5::has_attr(cx, r, "/", "trace_mode"))
-    h.trace_mode = h5::read_attr_string(cx, r, "/", "trace_mode");
 }
 
 /// /cases: sizes a.results.
 void read_cases(const Reader& in, Archive& a) {
   const h5::Handle g = h5::open_group(in.cx, in.root, "/", "cases");
   const auto& specs = schema::kCaseColumns;
-  a.results.resize(count_rows(in, g.get(), "/cases", specs, in.committed("checkpoint_cases")));
+  a.results.resize(
+      count_rows(in, g.get(), "/cases", specs, in.committed(schema::checkpoint::cases)));
   const auto rows = records<CaseRecord>(
       a.results, [](CaseResult & r) -> auto& { return r.record; });
   read_columns(in, g.get(), "/cases", specs, std::span<CaseRecord* const>(rows));
@@ -224,12 +215,12 @@ std::vector<Vec3> slice(const Reader& in, const std::vector<schema::VertexRow>& 
 void read_geometry(const Reader& in, Archive& a) {
   const std::string p = "/geometry";
   const h5::Handle g = h5::open_group(in.cx, in.root, "/", "geometry");
-  const auto index_rows =
-      read_table(in, g.get(), p, schema::kGeometryColumns, in.committed("checkpoint_geometry"));
-  const auto va =
-      read_table(in, g.get(), p, schema::kVerticesAColumns, in.committed("checkpoint_vertices_a"));
-  const auto vb =
-      read_table(in, g.get(), p, schema::kVerticesBColumns, in.committed("checkpoint_vertices_b"));
+  const auto index_rows = read_table(in, g.get(), p, schema::kGeometryColumns,
+                                     in.committed(schema::checkpoint::geometry));
+  const auto va = read_table(in, g.get(), p, schema::kVerticesAColumns,
+                             in.committed(schema::checkpoint::vertices_a));
+  const auto vb = read_table(in, g.get(), p, schema::kVerticesBColumns,
+                             in.committed(schema::checkpoint::vertices_b));
   const auto index = case_index(a);
   for (const schema::GeometryRow& row : index_rows) {
     CaseGeometry& geo = a.results[find_case(in, index, p, row.case_id)].geometry.emplace();
@@ -249,7 +240,7 @@ void read_traces(const Reader& in, Archive& a) {
     const std::string p = "/traces/" + names[k];
     const h5::Handle g = h5::open_group(in.cx, all.get(), "/traces", names[k]);
     const auto rows = read_table(in, g.get(), p, schema::kTraceColumns,
-                                 in.committed("checkpoint_traces_" + std::to_string(k)));
+                                 in.committed(schema::checkpoint::traces(k)));
     for (const schema::TraceRow& row : rows) {
       const std::size_t i = find_case(in, index, p, row.case_id);
       if (row.simplex_size < 0 || row.simplex_size > Simplex::kCapacity)
@@ -273,7 +264,8 @@ Archive read_archive(const fs::path& path) {
       cx.handle(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, "cannot open group /");
 
   Archive a;
-  a.schema_version = h5::read_attr_i32(cx, root.get(), "/", "schema_version");
+  a.schema_version =
+      h5::read_attr_i32(cx, root.get(), "/", std::string(schema::attribute::schema_version));
   if (a.schema_version != kArchiveSchemaVersion)
     cx.error("schema_version " + std::to_string(a.schema_version) + " is not supported (expected " +
              std::to_string(kArchiveSchemaVersion) + ")");

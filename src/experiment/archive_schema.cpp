@@ -1,5 +1,5 @@
 // The parts of the archive schema the writer and the reader share: the HDF5 types, the trace
-// rows, the root attributes, and the column list results/README.md documents.
+// rows, the root attributes, and the tables results/README.md documents.
 
 #include "archive_schema.hpp"
 
@@ -67,40 +67,143 @@ GjkIterationTrace unflatten(const TraceRow& row) {
   return t;
 }
 
+std::string checkpoint::traces(std::size_t algorithm) {
+  return std::string(kCheckpointPrefix) + "traces_" + std::to_string(algorithm);
+}
+
+namespace {
+
+/// How a header member of type T is stored as a root attribute, and its type's name there.
+template <class T>
+struct AttributeStorage;
+
+template <>
+struct AttributeStorage<std::string> {
+  static constexpr std::string_view name = "string";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key,
+                    const std::string& v) {
+    h5::write_attr_string(cx, root, "/", key, v);
+  }
+  static std::string read(const h5::Context& cx, hid_t root, const std::string& key) {
+    return h5::read_attr_string(cx, root, "/", key);
+  }
+};
+template <>
+struct AttributeStorage<std::uint64_t> {
+  static constexpr std::string_view name = "uint64";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key, std::uint64_t v) {
+    h5::write_attr_u64(cx, root, "/", key, v);
+  }
+  static std::uint64_t read(const h5::Context& cx, hid_t root, const std::string& key) {
+    return h5::read_attr_u64(cx, root, "/", key);
+  }
+};
+/// bool as uint8 0 or 1.
+template <>
+struct AttributeStorage<bool> {
+  static constexpr std::string_view name = "uint8 (0/1)";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key, bool v) {
+    h5::write_attr_u8(cx, root, "/", key, v ? 1 : 0);
+  }
+  static bool read(const h5::Context& cx, hid_t root, const std::string& key) {
+    return h5::read_attr_u8(cx, root, "/", key) != 0;
+  }
+};
+template <>
+struct AttributeStorage<double> {
+  static constexpr std::string_view name = "float64";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key, double v) {
+    h5::write_attr_f64(cx, root, "/", key, v);
+  }
+  static double read(const h5::Context& cx, hid_t root, const std::string& key) {
+    return h5::read_attr_f64(cx, root, "/", key);
+  }
+};
+template <>
+struct AttributeStorage<std::vector<std::string>> {
+  static constexpr std::string_view name = "string array";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key,
+                    const std::vector<std::string>& v) {
+    h5::write_attr_strings(cx, root, "/", key, v);
+  }
+  static std::vector<std::string> read(const h5::Context& cx, hid_t root, const std::string& key) {
+    return h5::read_attr_strings(cx, root, "/", key);
+  }
+};
+
+}  // namespace
+
+std::string_view type_name(const RootAttributeSpec& spec) {
+  return std::visit(
+      [&spec](auto member) -> std::string_view {
+        if constexpr (std::is_same_v<decltype(member), std::monostate>)
+          return spec.type;
+        else
+          return AttributeStorage<typename MemberType<decltype(member)>::type>::name;
+      },
+      spec.field);
+}
+
+void write_header_attributes(const h5::Context& cx, hid_t root, const ArchiveHeader& h) {
+  for (const RootAttributeSpec& spec : kRootAttributes)
+    std::visit(
+        [&](auto member) {
+          if constexpr (!std::is_same_v<decltype(member), std::monostate>) {
+            using S = AttributeStorage<typename MemberType<decltype(member)>::type>;
+            S::write(cx, root, std::string(spec.name), h.*member);
+          }
+        },
+        spec.field);
+}
+
+void read_header_attributes(const h5::Context& cx, hid_t root, ArchiveHeader& h) {
+  for (const RootAttributeSpec& spec : kRootAttributes) {
+    const std::string name(spec.name);
+    if (spec.presence == Presence::optional && !h5::has_attr(cx, root, "/", name)) continue;
+    std::visit(
+        [&](auto member) {
+          if constexpr (!std::is_same_v<decltype(member), std::monostate>) {
+            using S = AttributeStorage<typename MemberType<decltype(member)>::type>;
+            h.*member = S::read(cx, root, name);
+          }
+        },
+        spec.field);
+  }
+}
+
 }  // namespace schema
 
 namespace {
 
-// Root attributes with a fixed meaning; every other root attribute is a provenance pair.
-constexpr std::array<std::string_view, 17> kRootAttributes = {"schema_version",
-                                                              "experiment_name",
-                                                              "experiment_text",
-                                                              "seed",
-                                                              "cases_planned",
-                                                              "start_time",
-                                                              "end_time",
-                                                              "oracle",
-                                                              "touching_band",
-                                                              "family_names",
-                                                              "algorithm_names",
-                                                              "complete",
-                                                              "checkpoint_cases",
-                                                              "checkpoint_geometry",
-                                                              "checkpoint_vertices_a",
-                                                              "checkpoint_vertices_b",
-                                                              "trace_mode"};
-
 template <class R, std::size_t N>
 void describe(const std::array<schema::ColumnSpec<R>, N>& specs, std::vector<ArchiveColumn>& out) {
   for (const auto& spec : specs)
-    out.push_back({std::string(spec.name), schema::type_name(spec)});
+    out.push_back({std::string(spec.name), schema::type_name(spec), std::string(spec.meaning)});
 }
 
 }  // namespace
 
+// The checkpoint attributes are root attributes by the table's pattern row.
+static_assert(std::ranges::any_of(schema::kRootAttributes, [](const auto& spec) {
+  return spec.name.ends_with('*') &&
+         spec.name.substr(0, spec.name.size() - 1) == schema::kCheckpointPrefix;
+}));
+
 bool is_root_attribute(std::string_view name) {
-  return name.starts_with("checkpoint_") ||
-         std::find(kRootAttributes.begin(), kRootAttributes.end(), name) != kRootAttributes.end();
+  for (const schema::RootAttributeSpec& spec : schema::kRootAttributes) {
+    const bool pattern = spec.name.ends_with('*');
+    if (pattern ? name.starts_with(spec.name.substr(0, spec.name.size() - 1)) : name == spec.name)
+      return true;
+  }
+  return false;
+}
+
+std::vector<ArchiveColumn> archive_root_attributes() {
+  std::vector<ArchiveColumn> out;
+  for (const schema::RootAttributeSpec& spec : schema::kRootAttributes)
+    out.push_back(
+        {std::string(spec.name), std::string(schema::type_name(spec)), std::string(spec.meaning)});
+  return out;
 }
 
 std::vector<ArchiveColumn> archive_columns(std::string_view group) {

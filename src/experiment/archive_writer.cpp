@@ -237,12 +237,15 @@ struct ArchiveWriter::Impl {
   void checkpoint() {
     const hid_t r = root.get();
     const Columns& c = *columns;
-    h5::write_attr_u64(cx, r, "/", "checkpoint_cases", c.cases->rows());
-    h5::write_attr_u64(cx, r, "/", "checkpoint_geometry", c.geometry->index.rows());
-    h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_a", c.geometry->vertices_a.rows());
-    h5::write_attr_u64(cx, r, "/", "checkpoint_vertices_b", c.geometry->vertices_b.rows());
+    const auto count = [&](std::string_view attribute, hsize_t rows) {
+      h5::write_attr_u64(cx, r, "/", std::string(attribute), rows);
+    };
+    count(schema::checkpoint::cases, c.cases->rows());
+    count(schema::checkpoint::geometry, c.geometry->index.rows());
+    count(schema::checkpoint::vertices_a, c.geometry->vertices_a.rows());
+    count(schema::checkpoint::vertices_b, c.geometry->vertices_b.rows());
     for (std::size_t k = 0; k < c.traces.size(); ++k)
-      h5::write_attr_u64(cx, r, "/", "checkpoint_traces_" + std::to_string(k), c.traces[k].rows());
+      count(schema::checkpoint::traces(k), c.traces[k].rows());
     cx.check(H5Fflush(root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
     snapshot();
   }
@@ -306,19 +309,11 @@ void ArchiveWriter::Impl::create_file() {
 
 void ArchiveWriter::Impl::write_root_attributes(const ArchiveHeader& h) {
   const hid_t r = root.get();
-  h5::write_attr_i32(cx, r, "/", "schema_version", kArchiveSchemaVersion);
+  h5::write_attr_i32(cx, r, "/", std::string(schema::attribute::schema_version),
+                     kArchiveSchemaVersion);
   for (const auto& [key, value] : h.provenance)
     h5::write_attr_string(cx, r, "/", key, value);
-  h5::write_attr_string(cx, r, "/", "experiment_name", h.experiment_name);
-  h5::write_attr_string(cx, r, "/", "experiment_text", h.experiment_text);
-  h5::write_attr_u64(cx, r, "/", "seed", h.seed);
-  h5::write_attr_u64(cx, r, "/", "cases_planned", h.cases_planned);
-  h5::write_attr_string(cx, r, "/", "start_time", h.start_time);
-  h5::write_attr_u8(cx, r, "/", "oracle", h.oracle ? 1 : 0);
-  h5::write_attr_f64(cx, r, "/", "touching_band", h.touching_band);
-  h5::write_attr_strings(cx, r, "/", "family_names", h.family_names);
-  h5::write_attr_strings(cx, r, "/", "algorithm_names", h.algorithm_names);
-  h5::write_attr_string(cx, r, "/", "trace_mode", h.trace_mode);
+  schema::write_header_attributes(cx, r, h);
 }
 
 ArchiveWriter::Impl::Columns ArchiveWriter::Impl::create_columns(const ArchiveHeader& h) {
@@ -503,12 +498,14 @@ void ArchiveWriter::finish(const std::string& end_time, bool complete) {
   if (w.finished) w.cx.error("finish called twice");
   w.finished = true;
   const bool whole = complete && !w.broken;
-  h5::write_attr_string(w.cx, w.root.get(), "/", "end_time", end_time);
+  h5::write_attr_string(w.cx, w.root.get(), "/", std::string(schema::attribute::end_time),
+                        end_time);
   w.columns->close(w.cx);
   w.columns.reset();
   w.cx.check(H5Fflush(w.root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
   // The completion flag comes last, after everything else is in the file.
-  h5::write_attr_u8(w.cx, w.root.get(), "/", "complete", whole ? 1 : 0);
+  h5::write_attr_u8(w.cx, w.root.get(), "/", std::string(schema::attribute::complete),
+                    whole ? 1 : 0);
   w.cx.check(w.root.close(), "cannot close group /");
   w.cx.check(w.file.close(), "cannot close the file");
   // Closed cleanly, the temporary file is whole up to its last checkpoint: no copy is needed.

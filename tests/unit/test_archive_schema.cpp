@@ -1,10 +1,12 @@
-// results/README.md documents every dataset of the archive; the writer and the reader take
-// their columns from the schema tables. This checks that the document's tables list exactly
-// those columns, in order, with their types, so neither can change without the other.
+// results/README.md documents every dataset and root attribute of the archive; the writer and
+// the reader take them from the schema's descriptor tables. The document's tables are made
+// from those tables (`gjklab schema --update results/README.md`), and this checks that they
+// are the current rendering, so that neither can change without the other.
 #include <catch2/catch.hpp>
 
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,74 +16,94 @@ using namespace gjklab::experiment;
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto first = s.find_first_not_of(' ');
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(' ') - first + 1);
-}
+const std::vector<std::string> kGroups = {"cases", "exact", "algorithms", "traces", "geometry"};
 
-/// The names in backquotes in a table cell ("`index_a`, `index_b`": two).
-std::vector<std::string> quoted_names(const std::string& cell) {
-  std::vector<std::string> names;
-  for (std::size_t open = cell.find('`'); open != std::string::npos;
-       open = cell.find('`', open + 1)) {
-    const std::size_t close = cell.find('`', open + 1);
-    if (close == std::string::npos) break;
-    names.push_back(cell.substr(open + 1, close - open - 1));
-    open = close;
-  }
-  return names;
-}
-
-/// The first table after the heading "### `/GROUP…", one entry per dataset it names.
-std::vector<ArchiveColumn> documented_columns(const std::string& group) {
-  std::ifstream in(std::string(GJKLAB_TESTS_DIR) + "/../results/README.md");
+std::string results_readme() {
+  std::ifstream in(std::string(GJKLAB_TESTS_DIR) + "/../results/README.md", std::ios::binary);
   REQUIRE(in);
-  const std::string heading = "### `/" + group;
-  std::vector<ArchiveColumn> columns;
-  bool in_section = false, in_table = false;
-  for (std::string line; std::getline(in, line);) {
-    if (line.starts_with("### ")) in_section = line.starts_with(heading);
-    if (!in_section) continue;
-    if (!line.starts_with("|")) {
-      if (in_table) break;
-      continue;
-    }
-    in_table = true;
-    std::vector<std::string> cells;
-    std::stringstream row(line.substr(1));
-    for (std::string cell; std::getline(row, cell, '|') && cells.size() < 2;)
-      cells.push_back(trim(cell));
-    if (cells.size() < 2 || cells[0] == "dataset" || cells[0].starts_with("-")) continue;
-    for (const std::string& name : quoted_names(cells[0]))
-      columns.push_back({name, cells[1]});
-  }
-  return columns;
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void check_names_unique(const std::vector<ArchiveColumn>& columns) {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    for (std::size_t j = i + 1; j < columns.size(); ++j)
+      CHECK(columns[i].name != columns[j].name);
 }
 
 }  // namespace
 
-TEST_CASE("results/README.md documents every archive column with its type", "[unit][archive]") {
-  for (const std::string group : {"cases", "exact", "algorithms", "traces", "geometry"}) {
+TEST_CASE("results/README.md's schema tables are the schema's rendering", "[unit][archive]") {
+  const std::string readme = results_readme();
+  for (const std::string& group : kGroups)
+    CHECK(readme.find("<!-- schema table: " + group + " -->\n") != std::string::npos);
+  CHECK(readme.find("<!-- schema table: root -->\n") != std::string::npos);
+  INFO("regenerate with: gjklab schema --update results/README.md");
+  CHECK(with_schema_tables(readme) == readme);
+}
+
+TEST_CASE("a schema table lists every column with its type and meaning", "[unit][archive]") {
+  for (const std::string& group : kGroups) {
     INFO("group /" << group);
-    const std::vector<ArchiveColumn> written = archive_columns(group);
-    const std::vector<ArchiveColumn> documented = documented_columns(group);
-    REQUIRE(!written.empty());
-    REQUIRE(documented.size() == written.size());
-    for (std::size_t i = 0; i < written.size(); ++i) {
-      INFO("column " << i);
-      CHECK(documented[i].name == written[i].name);
-      CHECK(documented[i].type == written[i].type);
+    const std::vector<ArchiveColumn> columns = archive_columns(group);
+    REQUIRE(!columns.empty());
+    const std::string table = archive_schema_table(group);
+    for (const ArchiveColumn& c : columns) {
+      INFO("column " << c.name);
+      CHECK(!c.meaning.empty());
+      CHECK(table.find("| `" + c.name + "` ") != std::string::npos);
+      CHECK(table.find(" | " + c.meaning + " |\n") != std::string::npos);
     }
   }
   CHECK(archive_columns("no such group").empty());
+  CHECK_THROWS_AS(archive_schema_table("no such group"), std::invalid_argument);
 }
 
-TEST_CASE("the archive schema names each column once per group", "[unit][archive]") {
-  for (const std::string group : {"cases", "exact", "algorithms", "traces", "geometry"}) {
-    const std::vector<ArchiveColumn> columns = archive_columns(group);
-    for (std::size_t i = 0; i < columns.size(); ++i)
-      for (std::size_t j = i + 1; j < columns.size(); ++j)
-        CHECK(columns[i].name != columns[j].name);
-  }
+TEST_CASE("schema tables: types as the document names them", "[unit][archive]") {
+  const auto type_of = [](const std::string& group, const std::string& name) {
+    for (const ArchiveColumn& c :
+         group == "root" ? archive_root_attributes() : archive_columns(group))
+      if (c.name == name) return c.type;
+    return std::string("(absent)");
+  };
+  CHECK(type_of("cases", "case_id") == "uint64");
+  CHECK(type_of("cases", "shape_a") == "enum `ShapeKind`");
+  CHECK(type_of("algorithms", "witness_a") == "float64 (rows × 3)");
+  CHECK(type_of("traces", "simplex_index_a") == "int32 (rows × 4)");
+  CHECK(type_of("exact", "intersect") == "bool");
+  CHECK(type_of("root", "schema_version") == "int32");
+  CHECK(type_of("root", "oracle") == "uint8 (0/1)");
+  CHECK(type_of("root", "family_names") == "string array");
+  CHECK(type_of("root", "touching_band") == "float64");
+  CHECK(type_of("root", "checkpoint_*") == "uint64 each");
+}
+
+TEST_CASE("the archive schema names each column and root attribute once", "[unit][archive]") {
+  for (const std::string& group : kGroups)
+    check_names_unique(archive_columns(group));
+  const std::vector<ArchiveColumn> root = archive_root_attributes();
+  check_names_unique(root);
+  // Creation order: the version first, the completion flag last.
+  REQUIRE(root.size() > 2);
+  CHECK(root.front().name == "schema_version");
+  CHECK(root.back().name == "complete");
+}
+
+TEST_CASE("with_schema_tables replaces only the marked tables", "[unit][archive]") {
+  const std::string stale =
+      "# Title\n\n<!-- schema table: geometry -->\n| old | table |\n"
+      "<!-- end schema table -->\n\nProse after.\n";
+  const std::string made = with_schema_tables(stale);
+  CHECK(made == "# Title\n\n<!-- schema table: geometry -->\n" + archive_schema_table("geometry") +
+                    "<!-- end schema table -->\n\nProse after.\n");
+  CHECK(with_schema_tables(made) == made);
+  CHECK(with_schema_tables("no tables here\n") == "no tables here\n");
+  // A marker inside a line is prose about the markers, not a table.
+  const std::string prose = "the lines `<!-- schema table: … -->` are made\n";
+  CHECK(with_schema_tables(prose) == prose);
+  CHECK_THROWS_AS(with_schema_tables("<!-- schema table: nothing -->\n<!-- end schema table -->\n"),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(with_schema_tables("<!-- schema table: cases -->\n| a |\n"),
+                  std::invalid_argument);
 }

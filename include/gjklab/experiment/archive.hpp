@@ -103,15 +103,28 @@ struct Archive {
   std::vector<CaseResult> results;  ///< geometry filled for the cases that kept it
 };
 
-/// One dataset of an archive group, as results/README.md documents it.
+/// One dataset of an archive group, or one root attribute, as results/README.md documents it.
 struct ArchiveColumn {
   std::string name;
-  std::string type;  ///< "float64", "enum `Termination`", "float64 (rows × 3)", ...
+  std::string type;     ///< "float64", "enum `Termination`", "float64 (rows × 3)", ...
+  std::string meaning;  ///< Markdown: units and frame first
 };
 /// The datasets of the group "cases", "exact", "algorithms" (each algorithm's group),
 /// "geometry" or "traces" (each algorithm's group) in creation order; empty for another name.
 /// Read from the schema tables the writer and the reader use.
 std::vector<ArchiveColumn> archive_columns(std::string_view group);
+/// The root attributes with a fixed meaning, in creation order ("checkpoint_*" stands for
+/// the checkpoint counts); every other root attribute is a provenance pair.
+std::vector<ArchiveColumn> archive_root_attributes();
+
+/// The Markdown table results/README.md shows for a group of archive_columns, or for the root
+/// attributes ("root"). Throws std::invalid_argument for another name.
+std::string archive_schema_table(std::string_view group);
+/// `document` with every table between the lines "<!-- schema table: GROUP -->" and
+/// "<!-- end schema table -->" replaced by archive_schema_table(GROUP): how results/README.md's
+/// tables are made from the schema (`gjklab schema --update FILE`). Throws
+/// std::invalid_argument for an unknown group or a table without its end line.
+std::string with_schema_tables(std::string_view document);
 
 /// Reads an archive written by ArchiveWriter, complete or not (a "<output>.tmp" file too).
 /// Throws ArchiveError naming the file and the missing or malformed group, dataset or
