@@ -278,7 +278,7 @@ Archive read_archive(const fs::path& path) {
   if (a.header.oracle) read_exact(in, a);
   read_algorithms(in, a);
   read_geometry(in, a);
-  if (a.header.trace_mode != "none") read_traces(in, a);
+  if (a.header.trace_mode != TraceMode::none) read_traces(in, a);
   return a;
 }
 

@@ -131,6 +131,23 @@ struct AttributeStorage<std::vector<std::string>> {
   }
 };
 
+/// TraceMode by its name; a name the table lacks is an error naming the attribute.
+template <>
+struct AttributeStorage<TraceMode> {
+  static constexpr std::string_view name = "string";
+  static void write(const h5::Context& cx, hid_t root, const std::string& key, TraceMode v) {
+    h5::write_attr_string(cx, root, "/", key, std::string(to_string(v)));
+  }
+  static TraceMode read(const h5::Context& cx, hid_t root, const std::string& key) {
+    const std::string text = h5::read_attr_string(cx, root, "/", key);
+    const auto mode = trace_mode_from_string(text);
+    if (!mode)
+      cx.error("attribute '" + key + "' of / is '" + text + "', not one of " +
+               names_list(kTraceModeNames));
+    return *mode;
+  }
+};
+
 }  // namespace
 
 std::string_view type_name(const RootAttributeSpec& spec) {

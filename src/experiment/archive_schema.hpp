@@ -260,7 +260,7 @@ inline constexpr std::string_view complete = "complete";
 using HeaderField =
     std::variant<std::monostate, std::string ArchiveHeader::*, std::uint64_t ArchiveHeader::*,
                  bool ArchiveHeader::*, double ArchiveHeader::*,
-                 std::vector<std::string> ArchiveHeader::*>;
+                 std::vector<std::string> ArchiveHeader::*, TraceMode ArchiveHeader::*>;
 
 /// One root attribute, as ColumnSpec is one column. `type` names the type of an attribute
 /// without a header member; a header attribute's follows from its member. A name ending in

@@ -349,7 +349,7 @@ ArchiveWriter::Impl::Columns ArchiveWriter::Impl::create_columns(const ArchiveHe
                        {cx, t, g.get(), p, schema::kVerticesAColumns, kVertexChunkRows},
                        {cx, t, g.get(), p, schema::kVerticesBColumns, kVertexChunkRows}});
   }
-  if (h.trace_mode != "none") {
+  if (h.trace_mode != TraceMode::none) {
     h5::Handle all = h5::create_group(cx, r, "/", "traces");
     for (const std::string& name : h.algorithm_names) {
       h5::Handle g = h5::create_group(cx, all.get(), "/traces", name);

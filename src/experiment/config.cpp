@@ -55,8 +55,6 @@ constexpr std::int64_t kMaxRepetitions = 1'000'000;
 constexpr double kMinScale = 1e-100;  // keeps squared lengths far from underflow and overflow
 constexpr double kMaxScale = 1e100;
 
-constexpr std::string_view kPlacementModes[] = {"separated", "overlapping", "mixed", "random",
-                                                "touching"};
 constexpr ContactType kContactTypes[] = {
     ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
     ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
@@ -380,11 +378,11 @@ Interval default_vertices(ShapeKind kind) {
 PlacementSpec read_placement(const Section& s, PlacementSpec base) {
   s.allow_only({"mode", "gap", "depth", "overlapping_fraction", "spread"});
   if (const auto mode = s.string("mode")) {
-    if (std::find(std::begin(kPlacementModes), std::end(kPlacementModes), *mode) ==
-        std::end(kPlacementModes))
+    const auto value = value_named(kPlacementModeNames, *mode);
+    if (!value)
       s.fail(*s.find("mode"), "mode",
-             "unknown placement mode '" + *mode + "'; valid: " + join(kPlacementModes));
-    base.mode = *mode;
+             "unknown placement mode '" + *mode + "'; valid: " + names_list(kPlacementModeNames));
+    base.mode = *value;
   }
   if (const auto gap = s.positive_interval("gap")) base.gap = *gap;
   if (const auto depth = s.positive_interval("depth")) base.depth = *depth;
@@ -643,7 +641,7 @@ void read_family_placement(const Section& s, const FamilyForm& form, const Place
   f.placement = placement;
   if (const toml::table* sub = s.subtable("placement"))
     f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
-  const bool touching = f.placement.mode == "touching";
+  const bool touching = f.placement.mode == PlacementMode::touching;
   if (touching && (!form.is_contact || f.contact == ContactType::parallel_edges))
     s.fail(s.header_line(), "placement.mode",
            "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges)");
@@ -1043,10 +1041,11 @@ void read_algorithms(const Section& top, ExperimentConfig& config) {
 void read_trace(const Section& trace, ExperimentConfig& config) {
   trace.allow_only({"mode"});
   if (const auto mode = trace.string("mode")) {
-    if (*mode != "none" && *mode != "failing" && *mode != "all")
+    const auto value = trace_mode_from_string(*mode);
+    if (!value)
       trace.fail(*trace.find("mode"), "mode",
-                 "unknown trace mode '" + *mode + "'; valid: none, failing, all");
-    config.trace = *mode;
+                 "unknown trace mode '" + *mode + "'; valid: " + names_list(kTraceModeNames));
+    config.trace = *value;
   }
 }
 

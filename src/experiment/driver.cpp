@@ -226,13 +226,13 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
   }
   for (AlgorithmRecord& r : result.algorithms)
     r.failure = classify_failure(r, result.exact ? &*result.exact : nullptr, config.touching_band);
-  if (config.trace != "none") {
+  if (config.trace != TraceMode::none) {
     // Tracing runs the same arithmetic, so the traced rerun repeats the recorded answer.
     result.traces.resize(config.algorithms.size());
     for (std::size_t i = 0; i < config.algorithms.size(); ++i) {
       const AlgorithmInfo& algorithm = *find_algorithm(config.algorithms[i].name);
       const bool wanted =
-          config.trace == "all" || result.algorithms[i].failure != FailureClass::none;
+          config.trace == TraceMode::all || result.algorithms[i].failure != FailureClass::none;
       if (!wanted || !can_trace(algorithm, radii)) continue;
       TraceRecorder recorder;
       run_algorithm_traced(algorithm, a, b, radii, config.algorithms[i].options, recorder,

@@ -460,14 +460,21 @@ namespace {
 
 /// Placement mode of one case (mixed draws overlapping with its fraction).
 Placement draw_placement(gsl_rng* r, const PlacementSpec& placement) {
-  if (placement.mode == "separated") return Placement::separated;
-  if (placement.mode == "overlapping") return Placement::overlapping;
-  if (placement.mode == "touching") return Placement::touching;
-  if (placement.mode == "random") return Placement::random;
-  if (placement.mode == "mixed")
-    return uniform(r) < placement.overlapping_fraction ? Placement::overlapping
-                                                       : Placement::separated;
-  throw std::invalid_argument("generate_case: unknown placement mode '" + placement.mode + "'");
+  switch (placement.mode) {
+    case PlacementMode::separated:
+      return Placement::separated;
+    case PlacementMode::overlapping:
+      return Placement::overlapping;
+    case PlacementMode::touching:
+      return Placement::touching;
+    case PlacementMode::random:
+      return Placement::random;
+    case PlacementMode::mixed:
+      return uniform(r) < placement.overlapping_fraction ? Placement::overlapping
+                                                         : Placement::separated;
+  }
+  throw std::invalid_argument("generate_case: unknown placement mode " +
+                              std::to_string(static_cast<int>(placement.mode)));
 }
 
 /// The drawn gap relative to size: > 0 separated, < 0 overlapping, 0 otherwise.

@@ -246,7 +246,7 @@ TEST_CASE("driver: traces of every query are archived and read back", "[unit][dr
   options.cases = 10;
   run_experiment(config, options);
   const Archive archive = read_archive(*options.output);
-  CHECK(archive.header.trace_mode == "all");
+  CHECK(archive.header.trace_mode == TraceMode::all);
   REQUIRE(archive.results.size() == 10);
   for (const CaseResult& r : archive.results) {
     REQUIRE(r.traces.size() == 3);

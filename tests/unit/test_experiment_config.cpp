@@ -130,7 +130,7 @@ mpr_tolerance = 1e-6
   CHECK(f0.rotation == Rotation::none);
   CHECK(f0.weight == 3);
   // [family.placement] overrides mode and depth; the rest comes from [placement].
-  CHECK(f0.placement.mode == "mixed");
+  CHECK(f0.placement.mode == PlacementMode::mixed);
   CHECK(f0.placement.depth.lo == 0.125);
   CHECK(f0.placement.depth.hi == 0.125);
   CHECK(f0.placement.gap.lo == 1e-4);
@@ -148,7 +148,7 @@ mpr_tolerance = 1e-6
   CHECK(f1.scale == 1);
   CHECK(f1.rotation == Rotation::random);
   CHECK(f1.weight == 1);
-  CHECK(f1.placement.mode == "separated");
+  CHECK(f1.placement.mode == PlacementMode::separated);
   CHECK(f1.placement.depth.lo == 1e-5);
   CHECK(f1.placement.spread == 2);
 
@@ -727,4 +727,22 @@ gjk_start = "fixed_direction"
                           "start = \"sideways\"\n"),
                     Contains("exp.toml:") && Contains("unknown start 'sideways'") &&
                         Contains("centre_direction"));
+}
+
+TEST_CASE("placement and trace modes are read by their names", "[unit][config]") {
+  for (const PlacementMode mode : values_of(kPlacementModeNames)) {
+    if (mode == PlacementMode::touching) continue;  // needs a contact family
+    const std::string text = kHead + "[placement]\nmode = \"" + std::string(to_string(mode)) +
+                             "\"\n" + kFamily + kAlgorithm;
+    CHECK(parse(text).families.at(0).placement.mode == mode);
+  }
+  for (const TraceMode mode : values_of(kTraceModeNames)) {
+    const std::string text = kHead + kFamily + kAlgorithm + "\n[trace]\nmode = \"" +
+                             std::string(to_string(mode)) + "\"\n";
+    CHECK(parse(text).trace == mode);
+  }
+  CHECK(parse(kHead + kFamily + kAlgorithm).trace == TraceMode::none);
+  CHECK_THROWS_WITH(parse(kHead + kFamily + kAlgorithm + "\n[trace]\nmode = \"some\"\n"),
+                    Contains("key 'trace.mode'") &&
+                        Contains("unknown trace mode 'some'; valid: none, failing, all"));
 }

@@ -56,7 +56,8 @@ ExperimentConfig varied_config() {
                              ShapeKind::cube_points,   ShapeKind::gaussian,
                              ShapeKind::box,           ShapeKind::cone,
                              ShapeKind::cylinder,      ShapeKind::uv_sphere};
-  const char* modes[] = {"separated", "overlapping", "mixed", "random"};
+  const PlacementMode modes[] = {PlacementMode::separated, PlacementMode::overlapping,
+                                 PlacementMode::mixed, PlacementMode::random};
   int i = 0;
   for (ShapeKind k : kinds) {
     FamilySpec f = family(k, 4, 200);
@@ -256,11 +257,11 @@ TEST_CASE("vertex count ranges are drawn log-uniformly", "[unit][families]") {
 TEST_CASE("separated and overlapping placements along the drawn axis", "[unit][families]") {
   FamilySpec sep = family(ShapeKind::cube_points, 4, 64);
   sep.name = "sep";
-  sep.placement.mode = "separated";
+  sep.placement.mode = PlacementMode::separated;
   sep.placement.gap = {1e-6, 2};
   FamilySpec ovl = family(ShapeKind::gaussian, 4, 64);
   ovl.name = "ovl";
-  ovl.placement.mode = "overlapping";
+  ovl.placement.mode = PlacementMode::overlapping;
   ovl.placement.depth = {1e-6, 0.4};
   const ExperimentConfig c = config_with({sep, ovl}, 3);
 
@@ -299,7 +300,7 @@ TEST_CASE("separated and overlapping placements along the drawn axis", "[unit][f
 
 TEST_CASE("mixed and random placements", "[unit][families]") {
   FamilySpec mixed = family(ShapeKind::ball_points, 16, 16);
-  mixed.placement.mode = "mixed";
+  mixed.placement.mode = PlacementMode::mixed;
   mixed.placement.overlapping_fraction = 0.3;
   int overlapping = 0;
   const int cases = 2000;
@@ -317,7 +318,7 @@ TEST_CASE("mixed and random placements", "[unit][families]") {
   CHECK(static_cast<double>(overlapping) / cases == Approx(0.3).margin(0.03));
 
   FamilySpec random = family(ShapeKind::sphere_points, 8, 8);
-  random.placement.mode = "random";
+  random.placement.mode = PlacementMode::random;
   random.placement.spread = 1.5;
   const ExperimentConfig r = config_with({random});
   double largest = 0;

@@ -46,8 +46,8 @@ struct ArchiveHeader {
   std::vector<std::vector<std::pair<std::string, std::string>>> algorithm_options;
   bool oracle = true;
   double touching_band = 1e-10;
-  /// "none", "failing" or "all": which queries' traces the archive holds (in /traces).
-  std::string trace_mode = "none";
+  /// Which queries' traces the archive holds (in /traces; stored by name).
+  TraceMode trace_mode = TraceMode::none;
 };
 
 /// Writes one archive. Not thread-safe (see above): use it from one thread.

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gjklab/exact/oracle.hpp"
@@ -30,15 +31,31 @@ struct Interval {
   double hi = 0;
 };
 
+/// How a family places its pairs: one Placement for every case, or `mixed`, which draws
+/// overlapping or separated per case.
+enum class PlacementMode : std::uint8_t { separated, overlapping, mixed, random, touching };
+inline constexpr auto kPlacementModeNames = std::to_array<EnumName<PlacementMode>>({
+    {PlacementMode::separated, "separated"},
+    {PlacementMode::overlapping, "overlapping"},
+    {PlacementMode::mixed, "mixed"},
+    {PlacementMode::random, "random"},
+    {PlacementMode::touching, "touching"},
+});
+static_assert(in_value_order(kPlacementModeNames) &&
+              ends_at(kPlacementModeNames, PlacementMode::touching));
+constexpr std::string_view to_string(PlacementMode m) {
+  return name_of(kPlacementModeNames, m);
+}
+
 /// How the second shape is placed relative to the first, for one family.
 struct PlacementSpec {
   /// separated: gap drawn log-uniformly from `gap`; overlapping: overlap drawn log-uniformly
   /// from `depth`; random: B's centre uniform in a cube of half-width `spread` around A's.
   /// `mixed` (not a Placement value): each case is overlapping with `overlapping_fraction`,
   /// else separated. touching (contact families only): exact contact, no ε.
-  std::string mode = "mixed";  ///< "separated", "overlapping", "mixed" or "random"
-  Interval gap{1e-6, 10};      ///< relative to the pair's size
-  Interval depth{1e-6, 0.5};   ///< relative to the pair's size
+  PlacementMode mode = PlacementMode::mixed;
+  Interval gap{1e-6, 10};     ///< relative to the pair's size
+  Interval depth{1e-6, 0.5};  ///< relative to the pair's size
   double overlapping_fraction = 0.5;
   double spread = 1.0;  ///< relative to the pair's size
 };
@@ -137,9 +154,8 @@ struct ExperimentConfig {
   /// than a certificate); the archive holds −1 otherwise.
   bool hull_vertices = false;
   double touching_band = 1e-10;  ///< relative to size: exact answers this close count as touching
-  /// Which queries keep a per-iteration trace in the archive: "none", "failing" (failure
-  /// class other than none) or "all". Only GJK algorithms can be traced.
-  std::string trace = "none";
+  /// Which queries keep a per-iteration trace in the archive.
+  TraceMode trace = TraceMode::none;
   bool timing = false;
   int repetitions = 5;  ///< timed repetitions per query; the median is recorded
   std::vector<FamilySpec> families;

@@ -6,13 +6,16 @@
 // does not apply (a boolean algorithm's distance, an untimed query's time, a depth not asked).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gjklab/exact/hint.hpp"
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/types.hpp"
 #include "gjklab/gjk/termination.hpp"
 #include "gjklab/gjk/trace.hpp"
@@ -27,6 +30,25 @@ enum class Placement : std::uint8_t {
   touching,     ///< built in exact contact (distance exactly 0), no gap drawn
   as_given,     ///< the pair exactly as read from a cases file
 };
+
+/// Which queries keep a per-iteration trace in the archive (only GJK algorithms can be traced).
+enum class TraceMode : std::uint8_t {
+  none,     ///< no traces, no /traces group
+  failing,  ///< the queries whose failure class is not none
+  all,      ///< every traceable query
+};
+inline constexpr auto kTraceModeNames = std::to_array<EnumName<TraceMode>>({
+    {TraceMode::none, "none"},
+    {TraceMode::failing, "failing"},
+    {TraceMode::all, "all"},
+});
+static_assert(in_value_order(kTraceModeNames) && ends_at(kTraceModeNames, TraceMode::all));
+constexpr std::string_view to_string(TraceMode m) {
+  return name_of(kTraceModeNames, m);
+}
+inline std::optional<TraceMode> trace_mode_from_string(std::string_view name) {
+  return value_named(kTraceModeNames, name);
+}
 
 /// The exact answer's class: separated, within the touching band, or intersecting.
 /// The band is |distance| or depth ≤ touching_band · size (see ExperimentConfig).
