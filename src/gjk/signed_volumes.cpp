@@ -2,32 +2,19 @@
 
 #include <cmath>
 
+#include "subsimplex_candidates.hpp"
+
 namespace gjklab {
 
 namespace {
+
+using detail::nearer;
+using detail::single_point;
 
 /// Montanari et al.'s compareSigns: true when both are > 0 or both are < 0 (zero and NaN fail).
 template <class T>
 bool same_sign(T a, T b) {
   return (a > 0 && b > 0) || (a < 0 && b < 0);
-}
-
-template <class T>
-SubsimplexSolutionT<T> single_point(const std::array<Vec3T<T>, 4>& y, int i) {
-  SubsimplexSolutionT<T> s;
-  s.found = true;
-  s.subset = static_cast<std::uint8_t>(1u << i);
-  s.weights[i] = 1;
-  s.closest = y[i];
-  return s;
-}
-
-/// The candidate nearer to the origin; the first one on ties (and when the second is NaN).
-template <class T>
-const SubsimplexSolutionT<T>& nearer(const SubsimplexSolutionT<T>& best,
-                                     const SubsimplexSolutionT<T>& c) {
-  if (!best.found) return c;
-  return c.closest.squaredNorm() < best.closest.squaredNorm() ? c : best;
 }
 
 /// Fills the solution of the sub-simplex `indices` with weights numerator[k] / denominator.

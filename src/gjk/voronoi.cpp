@@ -2,19 +2,14 @@
 
 #include <cmath>
 
+#include "subsimplex_candidates.hpp"
+
 namespace gjklab {
 
 namespace {
 
-template <class T>
-SubsimplexSolutionT<T> single_point(const std::array<Vec3T<T>, 4>& y, int i) {
-  SubsimplexSolutionT<T> s;
-  s.found = true;
-  s.subset = static_cast<std::uint8_t>(1u << i);
-  s.weights[i] = 1;
-  s.closest = y[i];
-  return s;
-}
+using detail::nearer;
+using detail::single_point;
 
 /// y_i + t (y_j − y_i): weights 1 − t and t.
 template <class T>
@@ -26,14 +21,6 @@ SubsimplexSolutionT<T> on_edge(const std::array<Vec3T<T>, 4>& y, int i, int j, T
   s.weights[j] = t;
   s.closest = y[i] + t * (y[j] - y[i]);
   return s;
-}
-
-/// The candidate nearer to the origin; the first one on ties (and when the second is NaN).
-template <class T>
-const SubsimplexSolutionT<T>& nearer(const SubsimplexSolutionT<T>& best,
-                                     const SubsimplexSolutionT<T>& c) {
-  if (!best.found) return c;
-  return c.closest.squaredNorm() < best.closest.squaredNorm() ? c : best;
 }
 
 /// Closest point of segment y_i y_j (Ericson 5.1.2, query point at the origin).
