@@ -14,9 +14,9 @@
 //    libFuzzer saves the input; the report is on stderr.
 //  - If the worker crashed (libhdf5's own crash, or a sanitizer report inside libhdf5, which
 //    the worker raises as SIGSEGV as the same read segfaults in the program) or did not answer
-//    within kWorkerSeconds, a new worker starts for the next input, and the file is read by
-//    read_archive_isolated itself, the product's containment, in a fresh forked child (the
-//    first 16 such files of a run, then one in 16: isolated_read_due): it must give an
+//    within its time limit (kWorkerCpuSeconds), a new worker starts for the next input, and the
+//    file is read by read_archive_isolated itself, the product's containment, in a fresh forked
+//    child (the first 4 such files of a run, then one in 16: isolated_read_due): it must give an
 //    ArchiveError (or, if the crash was the worker's state rather than the file's, an archive,
 //    checked as below). That child inherits libFuzzer's and the sanitizers' handlers; a
 //    pthread_atfork handler puts the default action back on SIGSEGV, SIGBUS, SIGFPE and
@@ -41,11 +41,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <span>
 #include <sstream>
@@ -119,10 +121,15 @@ void check_archive(const experiment::Archive& archive) {
 }
 
 /// How long the worker may take over one file before it is killed and the file goes to
-/// read_archive_isolated (libhdf5 loops forever on some corrupt global heaps). The target sets
-/// read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS) to the same, unless given:
-/// both together stay within libFuzzer's -timeout (run_target.sh: 25 s).
+/// read_archive_isolated: libhdf5 loops forever on some corrupt global heaps (a profile of a
+/// run found the workers in that loop 90 % of the time with a limit of 10 s). One second of
+/// the worker's CPU time, two hundred times its longest read of a valid archive here, or 10 s
+/// of wall time (the worker is starved beside other jobs). The target sets
+/// read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS, wall time) to 2 s unless
+/// given: both together stay within libFuzzer's -timeout (run_target.sh: 25 s).
+constexpr double kWorkerCpuSeconds = 1;
 constexpr int kWorkerSeconds = 10;
+constexpr const char* kIsolatedReadSeconds = "2";
 /// Inputs a worker reads before a new one replaces it, so that whatever a corrupt file leaves
 /// in libhdf5's state stays bounded.
 constexpr int kWorkerInputs = 2000;
@@ -202,6 +209,14 @@ void start_worker(const std::filesystem::path& file) {
   ++counts.workers;
 }
 
+/// The CPU time the worker has used so far, in seconds (0 if it cannot be read).
+double worker_cpu_seconds() {
+  clockid_t clock;
+  timespec t{};
+  if (::clock_getcpuclockid(worker.pid, &clock) != 0 || ::clock_gettime(clock, &t) != 0) return 0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 enum class WorkerRead { read, threw, died };
 
 /// Asks the worker to read the file; waits for its answer.
@@ -214,16 +229,18 @@ WorkerRead read_in_worker(const std::filesystem::path& file) {
   bool answered = ::write(worker.requests, &request, 1) == 1;
   if (answered) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kWorkerSeconds);
+    const double cpu_deadline = worker_cpu_seconds() + kWorkerCpuSeconds;
     answered = false;
     for (;;) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
                             deadline - std::chrono::steady_clock::now())
                             .count();
-      if (left <= 0) break;
+      if (left <= 0 || worker_cpu_seconds() > cpu_deadline) break;
       pollfd p{worker.answers, POLLIN, 0};
-      const int ready = ::poll(&p, 1, static_cast<int>(left));
+      const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 100)));
       if (ready < 0 && errno == EINTR) continue;
-      if (ready <= 0) break;
+      if (ready == 0) continue;
+      if (ready < 0) break;
       const ssize_t n = ::read(worker.answers, &answer, 1);
       if (n < 0 && errno == EINTR) continue;
       answered = n == 1;
@@ -247,14 +264,14 @@ WorkerRead read_in_worker(const std::filesystem::path& file) {
   return WorkerRead::died;
 }
 
-/// Whether the file that ended the worker goes to read_archive_isolated: the first 16 such
+/// Whether the file that ended the worker goes to read_archive_isolated: the first 4 such
 /// files, then one in 16. That read forks this process (hundreds of MB of ASan's memory) and
 /// its child symbolises the sanitizer's report again, about half a second of each crashing
 /// input's time, and a few in a hundred inputs crash libhdf5 (mostly one corrupt global heap);
 /// the worker's death already shows that read_archive_isolated's child dies on the file, and
 /// how the parent then answers does not depend on the file.
 bool isolated_read_due() {
-  return counts.died <= 16 || counts.died % 16 == 0;
+  return counts.died <= 4 || counts.died % 16 == 0;
 }
 
 }  // namespace
@@ -277,7 +294,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char*** argv) {
   if (ec) violated("cannot copy the archive-reading worker (fuzz_archive_worker)");
   worker_binary = copy.string();
   make_worker_environment();
-  ::setenv("GJKLAB_ARCHIVE_READ_SECONDS", std::to_string(kWorkerSeconds).c_str(), 0);
+  ::setenv("GJKLAB_ARCHIVE_READ_SECONDS", kIsolatedReadSeconds, 0);
   // A worker that has exited makes a write to its pipe raise SIGPIPE: an error return instead.
   ::signal(SIGPIPE, SIG_IGN);
   std::atexit([] {
