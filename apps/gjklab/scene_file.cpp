@@ -27,11 +27,18 @@ constexpr std::int64_t kMaxFrames = 100'000'000;
 constexpr std::int64_t kMaxBodies = 100'000;
 /// Tries per body of the random placement before the region is declared too full.
 constexpr int kPlacementAttempts = 1000;
-/// The shapes a [[bodies]] group may name (error messages).
-constexpr const char* kBodyShapes =
-    "box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, capsule, "
-    "sphere_points, "
-    "ball_points, cube_points, gaussian, flat_points, collinear_points, sliver, prism, pyramid";
+/// The shapes a [[bodies]] group may name (error messages): the scene's own, then the clouds
+/// of the family registry it may draw (experiment::find_body_cloud).
+const std::string& body_shapes() {
+  static const std::string names = [] {
+    std::string out =
+        "box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, capsule";
+    for (const experiment::ShapeGenerator& g : experiment::shape_generators())
+      if (g.body_cloud) out += ", " + std::string(to_string(g.kind));
+    return out;
+  }();
+  return names;
+}
 
 int line_of(const toml::source_region& r) {
   return r.begin.line > 0 ? static_cast<int>(r.begin.line) : 1;
@@ -223,33 +230,10 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
   } catch (const std::invalid_argument& e) {
     t.fail("vertices", e.what());
   }
-  t.fail("shape", "unknown shape '" + shape + "'; valid: " + kBodyShapes);
+  t.fail("shape", "unknown shape '" + shape + "'; valid: " + body_shapes());
 }
 
 // ---- bodies from the experiment families ----
-
-/// The experiments' generated clouds a body group may name; each body draws its own cloud.
-struct FamilyCloud {
-  std::string_view name;
-  experiment::ShapeKind kind;
-};
-constexpr FamilyCloud kFamilyClouds[] = {
-    {"sphere_points", experiment::ShapeKind::sphere_points},
-    {"ball_points", experiment::ShapeKind::ball_points},
-    {"cube_points", experiment::ShapeKind::cube_points},
-    {"gaussian", experiment::ShapeKind::gaussian},
-    {"flat_points", experiment::ShapeKind::flat_points},
-    {"collinear_points", experiment::ShapeKind::collinear_points},
-    {"sliver", experiment::ShapeKind::sliver},
-    {"prism", experiment::ShapeKind::prism},
-    {"pyramid", experiment::ShapeKind::pyramid},
-};
-
-const FamilyCloud* family_cloud(const std::string& shape) {
-  for (const FamilyCloud& f : kFamilyClouds)
-    if (f.name == shape) return &f;
-  return nullptr;
-}
 
 struct GslRngDeleter {
   void operator()(gsl_rng* r) const { gsl_rng_free(r); }
@@ -267,7 +251,8 @@ std::unique_ptr<gsl_rng, GslRngDeleter> group_rng(std::uint64_t seed, std::size_
 
 /// A generated cloud of the family shape: the experiments' unit cloud (within [-1, 1] of its
 /// centre), halved so that `size` is its extent as for the demo shapes, and scaled by size.
-std::vector<Vec3> family_cloud_points(const Table& t, const FamilyCloud& f, gsl_rng* r) {
+std::vector<Vec3> family_cloud_points(const Table& t, const experiment::ShapeGenerator& f,
+                                      gsl_rng* r) {
   const int n = static_cast<int>(t.integer("vertices", 32, 1, 100000));
   const double aspect = t.number("aspect", 10, 1, 1e12);
   std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, r, aspect);
@@ -635,11 +620,11 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
                   "count", "density", "friction", "restitution", "placement", "position", "spacing",
                   "row", "region", "random_rotation", "velocity"});
     const std::string shape = t.string("shape", "");
-    if (shape.empty()) t.fail("shape", std::string("missing (required): ") + kBodyShapes);
+    if (shape.empty()) t.fail("shape", "missing (required): " + body_shapes());
     const double radius = swept_radius_of(t, shape);
     // Generated clouds: one per body, from the group's own generator; meshes and real
     // objects: body i takes file (object) i mod count; the other shapes: one hull for the group.
-    const FamilyCloud* generated = family_cloud(shape);
+    const experiment::ShapeGenerator* generated = experiment::find_body_cloud(shape);
     const auto rng_of_group = generated ? group_rng(s.seed, group) : nullptr;
     const std::vector<std::vector<Vec3>> meshes = shape == "mesh" ? read_meshes(t)
                                                   : shape == "real_object"

@@ -390,16 +390,18 @@ gsl_rng* as_rng(void* r) {
 /// The family registry's generated shapes: one row each (the ShapeKind, what it makes, its
 /// vertex count when the family gives none, its generator). A new generated shape is its
 /// generator and one row here; family_shapes, generate_shape and the experiment parser follow.
-/// Rows a family cannot name (prism, pyramid: parts of the contact families) come last.
+/// Rows a family cannot name (prism, pyramid: parts of the contact families) come last. A row
+/// ending in `…, nameable, body_cloud` differs from the defaults (nameable, not a body cloud):
+/// `true, true` for the clouds a scene's bodies may draw too.
 constexpr ShapeGenerator kShapeGenerators[] = {
     {ShapeKind::sphere_points, "points uniform on the unit sphere", 32,
-     [](int n, void* r, double) { return sphere_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return sphere_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::ball_points, "points uniform in the unit ball", 32,
-     [](int n, void* r, double) { return ball_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return ball_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::cube_points, "points uniform in the cube [-1, 1]^3", 32,
-     [](int n, void* r, double) { return cube_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return cube_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::gaussian, "standard normal cloud", 32,
-     [](int n, void* r, double) { return gaussian_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return gaussian_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::box, "demo box (8 vertices)", 8,
      [](int, void*, double) { return points_of(shapes::box()); }},
     {ShapeKind::cone, "demo cone (apex and a ring)", 33,
@@ -410,23 +412,24 @@ constexpr ShapeGenerator kShapeGenerators[] = {
      [](int n, void*, double) { return points_of(shapes::uv_sphere(std::max(n, 6))); }},
     {ShapeKind::flat_points,
      "points uniform in the unit disk of the plane z = 0 (exactly coplanar)", 32,
-     [](int n, void* r, double) { return disk_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return disk_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::collinear_points, "points uniform on the segment [-1, 1] of the x axis", 32,
-     [](int n, void* r, double) { return segment_cloud(n, as_rng(r)); }},
+     [](int n, void* r, double) { return segment_cloud(n, as_rng(r)); }, true, true},
     {ShapeKind::duplicate_points, "n points drawn from three distinct points on the unit sphere",
      32, [](int n, void* r, double) { return duplicate_cloud(n, as_rng(r)); }},
     {ShapeKind::single_point, "one point at the origin", 32,
      [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
     {ShapeKind::sliver, "box of extents 1 x 1 x 1/aspect", 32,
-     [](int, void*, double aspect) { return points_of(shapes::box(Vec3(1, 1, 1 / aspect))); }},
+     [](int, void*, double aspect) { return points_of(shapes::box(Vec3(1, 1, 1 / aspect))); }, true,
+     true},
     {ShapeKind::sphere, "sphere-swept point (a ball of the family's radius)", 32,
      [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
     {ShapeKind::capsule, "sphere-swept segment (+-1, 0, 0)", 32,
      [](int, void*, double) {
        return std::vector<Vec3>{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
      }},
-    {ShapeKind::prism, "", 32, [](int, void*, double) { return roof_below(); }, false},
-    {ShapeKind::pyramid, "", 32, [](int, void*, double) { return pyramid(0, 0, -1); }, false},
+    {ShapeKind::prism, "", 32, [](int, void*, double) { return roof_below(); }, false, true},
+    {ShapeKind::pyramid, "", 32, [](int, void*, double) { return pyramid(0, 0, -1); }, false, true},
 };
 
 }  // namespace
@@ -444,6 +447,12 @@ const ShapeGenerator* find_shape_generator(ShapeKind kind) {
 const ShapeGenerator* find_shape_generator(std::string_view name) {
   for (const ShapeGenerator& g : kShapeGenerators)
     if (g.nameable && to_string(g.kind) == name) return &g;
+  return nullptr;
+}
+
+const ShapeGenerator* find_body_cloud(std::string_view name) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.body_cloud && to_string(g.kind) == name) return &g;
   return nullptr;
 }
 

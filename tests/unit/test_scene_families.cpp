@@ -18,6 +18,7 @@
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/archive.hpp"
 #include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/families.hpp"
 #include "gjklab/experiment/scene_stream.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/scene/body.hpp"
@@ -351,4 +352,27 @@ algorithm = "gjk-nesterov"
         std::string::npos);
   CHECK(error_of("[narrow_phase]\n[narrow_phase.depth_options]\nmax_iterations = 3\n")
             .find("key 'narrow_phase.depth_options': needs depth_algorithm") != std::string::npos);
+}
+
+TEST_CASE("scene files: a body group may draw every body cloud of the family registry",
+          "[unit][scene]") {
+  int body_clouds = 0;
+  for (const experiment::ShapeGenerator& g : experiment::shape_generators()) {
+    if (!g.body_cloud) continue;
+    ++body_clouds;
+    INFO(to_string(g.kind));
+    CHECK(experiment::find_body_cloud(to_string(g.kind)) == &g);
+    // A radius gives the flat and collinear clouds a volume.
+    CHECK(error_of("[[bodies]]\nshape = \"" + std::string(to_string(g.kind)) +
+                   "\"\nvertices = 12\nradius = 0.1\n")
+              .empty());
+  }
+  CHECK(body_clouds == 9);
+  // The scene builds its own demo shapes and swept shapes; the registry's are not bodies.
+  for (const char* own : {"box", "cone", "cylinder", "uv_sphere", "sphere", "capsule"})
+    CHECK(experiment::find_body_cloud(own) == nullptr);
+  CHECK(error_of("[[bodies]]\nshape = \"teapot\"\n")
+            .find("valid: box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, "
+                  "capsule, sphere_points, ball_points, cube_points, gaussian, flat_points, "
+                  "collinear_points, sliver, prism, pyramid") != std::string::npos);
 }

@@ -55,6 +55,9 @@ struct ShapeGenerator {
   /// generate_shape; `gsl_rng` is a gsl_rng*).
   std::vector<Vec3> (*generate)(int n, void* gsl_rng, double aspect);
   bool nameable = true;  ///< false: a part of other families only (prism, pyramid)
+  /// A scene's body group may name it (`[[bodies]] shape = NAME`): each body draws its own
+  /// cloud. Not the shapes a scene builds itself (the demo shapes, sphere, capsule).
+  bool body_cloud = false;
 };
 
 /// Every generated shape, in the order family_shapes lists them.
@@ -63,6 +66,8 @@ std::span<const ShapeGenerator> shape_generators();
 const ShapeGenerator* find_shape_generator(ShapeKind kind);
 /// The generator a family may name so, or nullptr.
 const ShapeGenerator* find_shape_generator(std::string_view name);
+/// The generator a scene's body group may name so (body_cloud), or nullptr.
+const ShapeGenerator* find_body_cloud(std::string_view name);
 
 /// Points of one generator (before rotation, scale and placement); `n` (>= 1) is the requested
 /// vertex count. The point generators give exactly n points; the demo shapes adjust it: box has
