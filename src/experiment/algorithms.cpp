@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -371,24 +372,26 @@ Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
   return out;
 }
 
-Outcome swept_libccd_gjk(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                         const AlgorithmOptions& o) {
-  return from_boolean(peers::libccd_gjk_intersect(a, b, o.libccd, r));
+/// A libccd adapter: the two polytopes, the options and the radii it sweeps them by; it answers
+/// a boolean (BooleanResult) or a penetration (LibccdPenetration).
+template <class Result>
+using LibccdQuery = Result (*)(const Polytope&, const Polytope&, const peers::LibccdOptions&,
+                               const SweptRadii&);
+
+/// Whether the adapter answers a penetration (with a depth) rather than a boolean.
+template <class Result>
+constexpr bool reports_depth(LibccdQuery<Result>) {
+  return std::is_same_v<Result, peers::LibccdPenetration>;
 }
 
-Outcome swept_libccd_mpr(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                         const AlgorithmOptions& o) {
-  return from_boolean(peers::libccd_mpr_intersect(a, b, o.libccd, r));
-}
-
-Outcome swept_libccd_gjk_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                             const AlgorithmOptions& o) {
-  return from_libccd_penetration(peers::libccd_gjk_penetration(a, b, o.libccd, r));
-}
-
-Outcome swept_libccd_mpr_depth(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                               const AlgorithmOptions& o) {
-  return from_libccd_penetration(peers::libccd_mpr_penetration(a, b, o.libccd, r));
+/// The run of a libccd adapter (it takes the radii itself).
+template <auto Query>
+Outcome run_libccd(const Polytope& a, const Polytope& b, const SweptRadii& r,
+                   const AlgorithmOptions& o) {
+  if constexpr (reports_depth(Query))
+    return from_libccd_penetration(Query(a, b, o.libccd, r));
+  else
+    return from_boolean(Query(a, b, o.libccd, r));
 }
 
 Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
@@ -542,29 +545,11 @@ BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o
   });
 }
 
-BenchTally bench_libccd_gjk(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
+/// The bench loop of a libccd adapter (the bench's shapes are polytopes: radii 0).
+template <auto Query>
+BenchTally bench_libccd(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
   return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_gjk_intersect(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_mpr(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_mpr_intersect(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_gjk_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                                int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_gjk_penetration(a, b, o.libccd);
-  });
-}
-
-BenchTally bench_libccd_mpr_depth(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                                  int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return peers::libccd_mpr_penetration(a, b, o.libccd);
+    return Query(a, b, o.libccd, SweptRadii{});
   });
 }
 
@@ -710,20 +695,21 @@ AlgorithmInfo sat_entry() {
           .bench = bench_sat};
 }
 
-/// A libccd query: its adapter takes the radii itself (Run), so the plain run is Run at zero
-/// radii; `depth` for the penetration queries.
-template <SweptRun Run>
-AlgorithmInfo libccd_entry(std::string_view name, std::string_view description, bool depth,
-                           OptionSchema options, BenchLoop bench) {
+/// A libccd query, all from its adapter: the adapter takes the radii itself, so the plain run
+/// is the swept one at zero radii; a penetration adapter reports a depth and takes the depth
+/// options.
+template <auto Query>
+AlgorithmInfo libccd_entry(std::string_view name, std::string_view description) {
+  constexpr bool depth = reports_depth(Query);
   return {.name = name,
           .kind = AnswerKind::boolean,
           .description = description,
-          .run = at_zero_radii<Run>,
+          .run = at_zero_radii<run_libccd<Query>>,
           .peer = true,
           .depth = depth,
-          .run_swept = Run,
-          .options = options,
-          .bench = bench};
+          .run_swept = run_libccd<Query>,
+          .options = depth ? libccd_depth_option_schema() : libccd_option_schema(),
+          .bench = bench_libccd<Query>};
 }
 
 #ifdef GJKLAB_HAVE_FCL
@@ -792,10 +778,8 @@ std::vector<AlgorithmInfo>& registry() {
       gjk_bool_entry(),
       gjk_variant_entry<JohnsonSubAlgorithm>("gjk-johnson",
                                              "GJK distance with Johnson's distance sub-algorithm"),
-      libccd_entry<swept_libccd_gjk>("libccd-gjk", "libccd's ccdGJKIntersect", false,
-                                     libccd_option_schema(), bench_libccd_gjk),
-      libccd_entry<swept_libccd_mpr>("libccd-mpr", "libccd's ccdMPRIntersect", false,
-                                     libccd_option_schema(), bench_libccd_mpr),
+      libccd_entry<peers::libccd_gjk_intersect>("libccd-gjk", "libccd's ccdGJKIntersect"),
+      libccd_entry<peers::libccd_mpr_intersect>("libccd-mpr", "libccd's ccdMPRIntersect"),
       gjk_variant_entry<JohnsonBackupSubAlgorithm>(
           "gjk-johnson-backup",
           "GJK distance with Johnson's sub-algorithm and van den Bergen's backup procedure"),
@@ -812,11 +796,9 @@ std::vector<AlgorithmInfo>& registry() {
           gjk_distance_option_schema()),
       epa_entry(),
       sat_entry(),
-      libccd_entry<swept_libccd_gjk_epa>(
-          "libccd-gjk-epa", "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop",
-          true, libccd_depth_option_schema(), bench_libccd_gjk_epa),
-      libccd_entry<swept_libccd_mpr_depth>("libccd-mpr-depth", "libccd's ccdMPRPenetration", true,
-                                           libccd_depth_option_schema(), bench_libccd_mpr_depth),
+      libccd_entry<peers::libccd_gjk_penetration>(
+          "libccd-gjk-epa", "libccd's ccdGJKPenetration (GJK, then EPA) with a bounded EPA loop"),
+      libccd_entry<peers::libccd_mpr_penetration>("libccd-mpr-depth", "libccd's ccdMPRPenetration"),
 #ifdef GJKLAB_HAVE_FCL
       fcl_entry<peers::FclSolver::libccd>(
           "fcl-libccd",
