@@ -21,6 +21,7 @@
 #include "gjklab/build_info.hpp"
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/seeded_random.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::experiment::bench {
@@ -42,33 +43,7 @@ using Clock = ThreadClock;
 
 // ---- seeded generation ---------------------------------------------------------------------
 
-/// std::mt19937_64 (its output sequence is fixed by the standard) with our own conversions, so
-/// a seed gives the same inputs with every standard library.
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : engine_(seed) {}
-  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1p-53; }
-  double normal() {
-    const double u = 1.0 - uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * uniform());
-  }
-  Vec3 unit_vector() {
-    for (;;) {
-      const Vec3 g(normal(), normal(), normal());
-      if (const double n = g.norm(); n > 1e-9) return g / n;
-    }
-  }
-  /// A uniformly distributed rotation (normalised Gaussian quaternion).
-  Mat3 rotation() {
-    for (;;) {
-      const Quat q(normal(), normal(), normal(), normal());
-      if (q.norm() > 1e-9) return q.normalized().toRotationMatrix();
-    }
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
+using Rng = SeededRandom;
 
 /// Names and shapes of the classic demo, in the order of the published table.
 struct DemoShape {
@@ -193,12 +168,7 @@ std::vector<Case> random_cases(const BenchConfig& config, ShapeStore& store, boo
           b.push_back(rng.unit_vector());
         // Move B along u so that its extent along u starts `gap` after A's ends.
         const Vec3 u = rng.unit_vector();
-        double a_max = -INFINITY, b_min = INFINITY;
-        for (const Vec3& p : a)
-          a_max = std::max(a_max, p.dot(u));
-        for (const Vec3& p : b)
-          b_min = std::min(b_min, p.dot(u));
-        const Vec3 shift = (a_max - b_min + gap) * u;
+        const Vec3 shift = separating_shift(a, b, u, gap) * u;
         for (Vec3& p : b)
           p += shift;
         const Polytope* pa = store.add(Polytope(std::move(a)));

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gjklab/experiment/seeded_random.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
@@ -282,20 +283,6 @@ ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family
 constexpr ContactType kExactContacts[] = {ContactType::face_face,   ContactType::edge_edge,
                                           ContactType::vertex_face, ContactType::edge_face,
                                           ContactType::vertex_edge, ContactType::vertex_vertex};
-
-double max_projection(const std::vector<Vec3>& cloud, const Vec3& u) {
-  double m = -std::numeric_limits<double>::infinity();
-  for (const Vec3& p : cloud)
-    m = std::max(m, p.dot(u));
-  return m;
-}
-
-double min_projection(const std::vector<Vec3>& cloud, const Vec3& u) {
-  double m = std::numeric_limits<double>::infinity();
-  for (const Vec3& p : cloud)
-    m = std::min(m, p.dot(u));
-  return m;
-}
 
 std::vector<Vec3> points_of(const Polytope& p) {
   return {p.vertices().begin(), p.vertices().end()};
