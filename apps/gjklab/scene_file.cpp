@@ -1,6 +1,5 @@
 #include "gjklab/scene_file.hpp"
 
-#include <gsl/gsl_rng.h>
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
@@ -235,27 +234,13 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
 
 // ---- bodies from the experiment families ----
 
-struct GslRngDeleter {
-  void operator()(gsl_rng* r) const { gsl_rng_free(r); }
-};
-
-/// The generator of one body group's clouds: GSL's mt19937 (the experiments' generator),
-/// seeded from the scene seed and the group's index alone, so adding a group leaves the
-/// others' clouds and the placement stream as they were.
-std::unique_ptr<gsl_rng, GslRngDeleter> group_rng(std::uint64_t seed, std::size_t group) {
-  std::unique_ptr<gsl_rng, GslRngDeleter> r(gsl_rng_alloc(gsl_rng_mt19937));
-  if (!r) throw std::bad_alloc();
-  gsl_rng_set(r.get(), experiment::case_stream_seed(seed, group));
-  return r;
-}
-
 /// A generated cloud of the family shape: the experiments' unit cloud (within [-1, 1] of its
 /// centre), halved so that `size` is its extent as for the demo shapes, and scaled by size.
 std::vector<Vec3> family_cloud_points(const Table& t, const experiment::ShapeGenerator& f,
-                                      gsl_rng* r) {
+                                      void* gsl_rng) {
   const int n = static_cast<int>(t.integer("vertices", 32, 1, 100000));
   const double aspect = t.number("aspect", 10, 1, 1e12);
-  std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, r, aspect);
+  std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, gsl_rng, aspect);
   const Vec3 s = 0.5 * size_of(t);
   for (Vec3& v : cloud)
     v = v.cwiseProduct(s);
@@ -625,7 +610,10 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
     // Generated clouds: one per body, from the group's own generator; meshes and real
     // objects: body i takes file (object) i mod count; the other shapes: one hull for the group.
     const experiment::ShapeGenerator* generated = experiment::find_body_cloud(shape);
-    const auto rng_of_group = generated ? group_rng(s.seed, group) : nullptr;
+    // The group's own stream (the scene seed and the group's index alone), so adding a group
+    // leaves the others' clouds and the placement stream as they were.
+    const experiment::GslStream rng_of_group =
+        generated ? experiment::case_stream(s.seed, group) : nullptr;
     const std::vector<std::vector<Vec3>> meshes = shape == "mesh" ? read_meshes(t)
                                                   : shape == "real_object"
                                                       ? read_real_objects(t)

@@ -55,18 +55,6 @@ std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id) {
 
 namespace {
 
-struct RngDeleter {
-  void operator()(gsl_rng* r) const { gsl_rng_free(r); }
-};
-using RngPtr = std::unique_ptr<gsl_rng, RngDeleter>;
-
-RngPtr make_case_rng(std::uint64_t seed, std::uint64_t case_id) {
-  RngPtr rng(gsl_rng_alloc(gsl_rng_mt19937));
-  if (!rng) throw std::bad_alloc();
-  gsl_rng_set(rng.get(), case_stream_seed(seed, case_id));
-  return rng;
-}
-
 /// Uniform in [0, 1).
 double uniform(gsl_rng* r) {
   return gsl_rng_uniform(r);
@@ -616,6 +604,17 @@ std::span<const FamilyShapeInfo> family_shapes() {
   return shapes;
 }
 
+void GslStreamFree::operator()(void* gsl_rng_handle) const {
+  gsl_rng_free(static_cast<gsl_rng*>(gsl_rng_handle));
+}
+
+GslStream case_stream(std::uint64_t seed, std::uint64_t id) {
+  GslStream stream(gsl_rng_alloc(gsl_rng_mt19937));
+  if (!stream) throw std::bad_alloc();
+  gsl_rng_set(static_cast<gsl_rng*>(stream.get()), case_stream_seed(seed, id));
+  return stream;
+}
+
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
   if (config.families.empty())
     throw std::invalid_argument("generate_case: the experiment has no families");
@@ -623,8 +622,8 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   const std::uint64_t n_values = config.geometry_sweep ? config.geometry_sweep->values.size() : 1;
   const std::uint64_t base_id = case_id / n_values;
   const std::uint64_t value_index = case_id % n_values;
-  const RngPtr rng = make_case_rng(config.seed, base_id);
-  gsl_rng* r = rng.get();
+  const GslStream rng = case_stream(config.seed, base_id);
+  gsl_rng* r = static_cast<gsl_rng*>(rng.get());
 
   GeneratedCase out;
   CaseRecord& rec = out.record;

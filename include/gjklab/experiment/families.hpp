@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,18 @@ struct GeneratedCase {
 /// mixed by splitmix64 into a key, and the case id goes through a keyed bijection of 32-bit
 /// integers, so the case ids 0 … 2^32 − 1 of one experiment get pairwise different seeds.
 std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id);
+
+/// Frees a GSL generator (gsl_rng_free).
+struct GslStreamFree {
+  void operator()(void* gsl_rng) const;
+};
+/// An owned GSL generator: a gsl_rng*, as void* to keep GSL out of this header (generate_shape
+/// takes it so).
+using GslStream = std::unique_ptr<void, GslStreamFree>;
+/// The generator of stream `id` under `seed`: gsl_rng_mt19937 seeded with
+/// case_stream_seed(seed, id). Every case of an experiment draws from its own (id: the case),
+/// and so does each body group of a scene (id: the group). Throws std::bad_alloc.
+GslStream case_stream(std::uint64_t seed, std::uint64_t id);
 
 /// Generates case `case_id` of the experiment (family drawn by weight, then vertex counts,
 /// shapes, rotations, scale and placement), from a GSL generator seeded by
