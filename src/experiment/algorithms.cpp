@@ -252,14 +252,17 @@ Outcome run_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o)
   return out;
 }
 
-Outcome from_libccd_penetration(const peers::LibccdPenetration& r) {
+/// A peer's depth answer (libccd's penetration queries, SAT): the boolean, and the depth and
+/// normal where it says intersecting; no distance. `iterations` as the peer counts them.
+template <class DepthResult>
+Outcome from_depth_answer(const DepthResult& r, int iterations) {
   Outcome o;
   o.intersect = r.intersect;
   if (r.intersect) {
     o.depth = r.depth;
     o.normal = r.normal;
   }
-  o.iterations = r.iterations;
+  o.iterations = iterations;
   o.support_calls = r.support_calls;
   o.termination = r.termination;
   return o;
@@ -299,16 +302,7 @@ Outcome run_sat(const Polytope& a, const Polytope& b, const AlgorithmOptions& o)
   const auto sa = sat_shape(a);
   const auto sb = sat_shape(b);
   const peers::SatResult r = peers::sat_query(*sa, *sb, o.sat);
-  Outcome out;
-  out.intersect = r.intersect;
-  if (r.intersect) {
-    out.depth = r.depth;
-    out.normal = r.normal;
-  }
-  out.iterations = r.axes_tested;
-  out.support_calls = r.support_calls;
-  out.termination = r.termination;
-  return out;
+  return from_depth_answer(r, r.axes_tested);
 }
 
 #ifdef GJKLAB_HAVE_FCL
@@ -388,10 +382,11 @@ constexpr bool reports_depth(LibccdQuery<Result>) {
 template <auto Query>
 Outcome run_libccd(const Polytope& a, const Polytope& b, const SweptRadii& r,
                    const AlgorithmOptions& o) {
+  const auto answer = Query(a, b, o.libccd, r);
   if constexpr (reports_depth(Query))
-    return from_libccd_penetration(Query(a, b, o.libccd, r));
+    return from_depth_answer(answer, answer.iterations);
   else
-    return from_boolean(Query(a, b, o.libccd, r));
+    return from_boolean(answer);
 }
 
 Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
