@@ -123,10 +123,10 @@ void check_archive(const experiment::Archive& archive) {
 /// How long the worker may take over one file before it is killed and the file goes to
 /// read_archive_isolated: libhdf5 loops forever on some corrupt global heaps (a profile of a
 /// run found the workers in that loop 90 % of the time with a limit of 10 s). One second of
-/// the worker's CPU time, two hundred times its longest read of a valid archive here, or 10 s
-/// of wall time (the worker is starved beside other jobs). The target sets
-/// read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS, wall time) to 2 s unless
-/// given: both together stay within libFuzzer's -timeout (run_target.sh: 25 s).
+/// the worker's CPU time, about 60 times its read of the largest seed archive (17 ms, a traced
+/// run of 260 kB), or 10 s of wall time (the worker is starved beside other jobs). The target
+/// sets read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS, wall time) to 2 s
+/// unless given: both together stay within libFuzzer's -timeout (run_target.sh: 25 s).
 constexpr double kWorkerCpuSeconds = 1;
 constexpr int kWorkerSeconds = 10;
 constexpr const char* kIsolatedReadSeconds = "2";
