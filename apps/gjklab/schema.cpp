@@ -23,7 +23,7 @@ CLI::App* add_schema_command(CLI::App& app, SchemaArgs& args) {
 namespace {
 
 void print_tables(std::ostream& out) {
-  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry"})
+  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry", "enums"})
     out << "<!-- schema table: " << group << " -->\n"
         << experiment::archive_schema_table(group) << "<!-- end schema table -->\n\n";
 }

@@ -10,7 +10,9 @@
 #include <string_view>
 #include <vector>
 
+#include "archive_schema.hpp"
 #include "gjklab/experiment/archive.hpp"
+#include "hdf5_util.hpp"
 
 namespace gjklab::experiment {
 
@@ -77,9 +79,33 @@ std::size_t find_line(std::string_view document, std::string_view marker, std::s
   return std::string_view::npos;
 }
 
+/// One line of the enum values' list: "- `Name`: `first` = 0, `second` = 1, ...".
+template <class E>
+std::string enum_values_line() {
+  std::string out = "- `";
+  out += schema::enum_type_name<E>();
+  out += "`:";
+  const char* separator = " ";
+  for (const auto& [name, value] : h5::enum_members<E>()) {
+    out += separator;
+    out += '`';
+    out += name;
+    out += "` = ";
+    out += std::to_string(value);
+    separator = ", ";
+  }
+  return out + "\n";
+}
+
+template <class... E>
+std::string enum_values(schema::EnumList<E...>) {
+  return (enum_values_line<E>() + ...);
+}
+
 }  // namespace
 
 std::string archive_schema_table(std::string_view group) {
+  if (group == "enums") return enum_values(schema::ArchiveEnums{});
   if (group == "root")
     return markdown_table({"attribute", "type", "meaning"}, table_rows(archive_root_attributes()));
   const std::vector<ArchiveColumn> columns = archive_columns(group);

@@ -438,6 +438,12 @@ struct Storage<E> : ScalarStorage<E> {
   static hid_t memory(const Types& t) { return t.of<E>(); }
 };
 
+/// Every enum type the archive stores, in the order results/README.md lists their values.
+template <class... E>
+struct EnumList {};
+using ArchiveEnums = EnumList<ShapeKind, Placement, ContactClass, Termination, FailureClass,
+                              GjkStep, exact::AnswerMethod>;
+
 /// The name results/README.md gives an enum type.
 template <class E>
 constexpr std::string_view enum_type_name() {

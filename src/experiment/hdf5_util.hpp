@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "gjklab/experiment/archive.hpp"
@@ -87,16 +88,26 @@ class Context {
 Handle string_type(const Context& cx);
 /// Enum {FALSE = 0, TRUE = 1} over int8: what h5py and numpy read as bool.
 Handle bool_type(const Context& cx);
-/// Enum over uint8 with member names from to_string(E), for values 0, 1, ... up to the first
-/// value whose name is "unknown".
+/// The members of the archive's enum type for E: names from to_string(E) for the values 0, 1,
+/// ... up to the first value whose name is "unknown". enum_type and results/README.md's list of
+/// enum values both read them.
 template <class E>
-Handle enum_type(const Context& cx) {
-  Handle type = cx.handle(H5Tenum_create(H5T_NATIVE_UINT8), H5Tclose, "cannot create an enum type");
+std::vector<std::pair<std::string_view, std::uint8_t>> enum_members() {
+  std::vector<std::pair<std::string_view, std::uint8_t>> out;
   for (unsigned v = 0; v < 256; ++v) {
     const std::string_view name = to_string(static_cast<E>(v));
     if (name == "unknown") break;
+    out.emplace_back(name, static_cast<std::uint8_t>(v));
+  }
+  return out;
+}
+
+/// Enum over uint8 with the members of enum_members<E>().
+template <class E>
+Handle enum_type(const Context& cx) {
+  Handle type = cx.handle(H5Tenum_create(H5T_NATIVE_UINT8), H5Tclose, "cannot create an enum type");
+  for (const auto& [name, value] : enum_members<E>()) {
     const std::string member(name);
-    const auto value = static_cast<std::uint8_t>(v);
     cx.check(H5Tenum_insert(type.get(), member.c_str(), &value),
              "cannot add enum member '" + member + "'");
   }

@@ -39,6 +39,7 @@ TEST_CASE("results/README.md's schema tables are the schema's rendering", "[unit
   for (const std::string& group : kGroups)
     CHECK(readme.find("<!-- schema table: " + group + " -->\n") != std::string::npos);
   CHECK(readme.find("<!-- schema table: root -->\n") != std::string::npos);
+  CHECK(readme.find("<!-- schema table: enums -->\n") != std::string::npos);
   INFO("regenerate with: gjklab schema --update results/README.md");
   CHECK(with_schema_tables(readme) == readme);
 }
@@ -106,4 +107,19 @@ TEST_CASE("with_schema_tables replaces only the marked tables", "[unit][archive]
                   std::invalid_argument);
   CHECK_THROWS_AS(with_schema_tables("<!-- schema table: cases -->\n| a |\n"),
                   std::invalid_argument);
+}
+
+TEST_CASE("the list of enum values names every member the archive's enum types hold",
+          "[unit][archive]") {
+  const std::string list = archive_schema_table("enums");
+  // The members added last to ShapeKind, and one value of each other archive enum.
+  for (const char* item :
+       {"- `ShapeKind`: `sphere_points` = 0,", "`sphere` = 17", "`capsule` = 18",
+        "- `Placement`: `separated` = 0,", "- `ContactClass`: ", "- `Termination`: `converged` = 0",
+        "- `FailureClass`: `none` = 0", "- `GjkStep`: `continued` = 0",
+        "- `AnswerMethod`: `certified` = 0, `qp` = 1, `none` = 2\n"}) {
+    INFO(item);
+    CHECK(list.find(item) != std::string::npos);
+  }
+  CHECK(list.find("unknown") == std::string::npos);
 }

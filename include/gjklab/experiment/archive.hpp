@@ -117,8 +117,9 @@ std::vector<ArchiveColumn> archive_columns(std::string_view group);
 /// the checkpoint counts); every other root attribute is a provenance pair.
 std::vector<ArchiveColumn> archive_root_attributes();
 
-/// The Markdown table results/README.md shows for a group of archive_columns, or for the root
-/// attributes ("root"). Throws std::invalid_argument for another name.
+/// The Markdown table results/README.md shows for a group of archive_columns, for the root
+/// attributes ("root"), or the list of every archive enum's values ("enums"). Throws
+/// std::invalid_argument for another name.
 std::string archive_schema_table(std::string_view group);
 /// `document` with every table between the lines "<!-- schema table: GROUP -->" and
 /// "<!-- end schema table -->" replaced by archive_schema_table(GROUP): how results/README.md's
