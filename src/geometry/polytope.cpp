@@ -459,7 +459,7 @@ void Polytope::assign(const CoordinateRows& rows) {
   graph_.reset();
   start_table_.clear();
   table_resolution_ = 1;
-  hint_.store(0, std::memory_order_relaxed);
+  hint_.store(0);
   try {
     const CloudMeasures m = fill_from(rows, vertices_, blocks_);
     take_measures(m.mean, m.lower, m.upper);
@@ -479,70 +479,6 @@ void Polytope::take_measures(const Vec3& mean, const Vec3& lower, const Vec3& up
   box_extent_ = (box_upper_ - box_lower_).maxCoeff();
   max_magnitude_ = std::max(box_lower_.cwiseAbs().maxCoeff(), box_upper_.cwiseAbs().maxCoeff());
   id_ = next_polytope_id.fetch_add(1, std::memory_order_relaxed);
-}
-
-Polytope::Polytope(const Polytope& other)
-    : vertices_(other.vertices_),
-      blocks_(other.blocks_),
-      mean_(other.mean_),
-      box_lower_(other.box_lower_),
-      box_upper_(other.box_upper_),
-      box_extent_(other.box_extent_),
-      max_magnitude_(other.max_magnitude_),
-      id_(other.id_),
-      graph_(other.graph_),
-      start_table_(other.start_table_),
-      table_resolution_(other.table_resolution_),
-      hint_(other.hint_.load(std::memory_order_relaxed)) {}
-
-Polytope& Polytope::operator=(const Polytope& other) {
-  if (this != &other) {
-    vertices_ = other.vertices_;
-    blocks_ = other.blocks_;
-    mean_ = other.mean_;
-    box_lower_ = other.box_lower_;
-    box_upper_ = other.box_upper_;
-    box_extent_ = other.box_extent_;
-    max_magnitude_ = other.max_magnitude_;
-    box_extent_ = other.box_extent_;
-    max_magnitude_ = other.max_magnitude_;
-    id_ = other.id_;
-    graph_ = other.graph_;
-    start_table_ = other.start_table_;
-    table_resolution_ = other.table_resolution_;
-    hint_.store(other.hint_.load(std::memory_order_relaxed), std::memory_order_relaxed);
-  }
-  return *this;
-}
-
-Polytope::Polytope(Polytope&& other) noexcept
-    : vertices_(std::move(other.vertices_)),
-      blocks_(std::move(other.blocks_)),
-      mean_(other.mean_),
-      box_lower_(other.box_lower_),
-      box_upper_(other.box_upper_),
-      box_extent_(other.box_extent_),
-      max_magnitude_(other.max_magnitude_),
-      id_(other.id_),
-      graph_(std::move(other.graph_)),
-      start_table_(std::move(other.start_table_)),
-      table_resolution_(other.table_resolution_),
-      hint_(other.hint_.load(std::memory_order_relaxed)) {}
-
-Polytope& Polytope::operator=(Polytope&& other) noexcept {
-  vertices_ = std::move(other.vertices_);
-  blocks_ = std::move(other.blocks_);
-  mean_ = other.mean_;
-  box_lower_ = other.box_lower_;
-  box_upper_ = other.box_upper_;
-  box_extent_ = other.box_extent_;
-  max_magnitude_ = other.max_magnitude_;
-  id_ = other.id_;
-  graph_ = std::move(other.graph_);
-  start_table_ = std::move(other.start_table_);
-  table_resolution_ = other.table_resolution_;
-  hint_.store(other.hint_.load(std::memory_order_relaxed), std::memory_order_relaxed);
-  return *this;
 }
 
 Polytope::~Polytope() = default;
@@ -649,7 +585,7 @@ void Polytope::build_start_table() {
       }
     }
   }
-  hint_.store(start_table_[0], std::memory_order_relaxed);
+  hint_.store(start_table_[0]);
 }
 
 void Polytope::disable_hill_climbing() {
@@ -658,7 +594,7 @@ void Polytope::disable_hill_climbing() {
 
 std::size_t Polytope::climb_support_index(const Vec3& d) const {
   const HullGraph& g = *graph_;
-  std::uint32_t current = hint_.load(std::memory_order_relaxed);
+  std::uint32_t current = hint_.load();
   double best = vertices_[current].dot(d);
   if (std::isnan(best)) return scan_support_index(d);
   if (const int cell = cube_map_cell(d, table_resolution_); cell >= 0) {
@@ -685,7 +621,7 @@ std::size_t Polytope::climb_support_index(const Vec3& d) const {
     if (next == current) break;
     current = next;
   }
-  hint_.store(current, std::memory_order_relaxed);
+  hint_.store(current);
   return current;
 }
 

@@ -124,10 +124,10 @@ class Polytope {
   /// share it (the vertices never change after construction).
   std::uint64_t id() const { return id_; }
 
-  Polytope(const Polytope& other);
-  Polytope& operator=(const Polytope& other);
-  Polytope(Polytope&& other) noexcept;
-  Polytope& operator=(Polytope&& other) noexcept;
+  Polytope(const Polytope& other) = default;
+  Polytope& operator=(const Polytope& other) = default;
+  Polytope(Polytope&& other) noexcept = default;
+  Polytope& operator=(Polytope&& other) noexcept = default;
   ~Polytope();
 
   /// Vertices per block of the scan's layout.
@@ -163,9 +163,25 @@ class Polytope {
   /// table_resolution_² cells), the graph vertex extreme along the cell's central direction.
   std::vector<std::uint32_t> start_table_;
   int table_resolution_ = 1;
-  /// Last support vertex of hill climbing. Relaxed atomic: concurrent queries on one polytope
-  /// stay well defined (each then starts from some recent vertex, which is still correct).
-  mutable std::atomic<std::uint32_t> hint_{0};
+  /// A vertex index that concurrent queries on one polytope may read and write: a relaxed
+  /// atomic (each query then starts from some recent vertex, which is still correct) that
+  /// copies and moves as its current value, so that Polytope's own copies are the defaults.
+  class SharedHint {
+   public:
+    SharedHint() = default;
+    SharedHint(const SharedHint& other) noexcept : value_(other.load()) {}
+    SharedHint& operator=(const SharedHint& other) noexcept {
+      store(other.load());
+      return *this;
+    }
+    std::uint32_t load() const { return value_.load(std::memory_order_relaxed); }
+    void store(std::uint32_t v) const { value_.store(v, std::memory_order_relaxed); }
+
+   private:
+    mutable std::atomic<std::uint32_t> value_{0};
+  };
+  /// Last support vertex of hill climbing.
+  SharedHint hint_;
 };
 
 /// {a.scan_support_index(d), b.scan_support_index(−d)}, the same answers, from one call that
