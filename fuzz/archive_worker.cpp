@@ -18,6 +18,7 @@
 #include <sanitizer/asan_interface.h>
 #include <sanitizer/common_interface_defs.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -79,6 +80,9 @@ void on_death() {
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
+  // Ends with the target, also in the middle of a read (libhdf5 loops forever on some corrupt
+  // global heaps): a worker left behind by an interrupted run spun for an hour.
+  if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() == 1) return 2;
   const std::filesystem::path path = argv[1];
   // Answers go to the original standard output; the reader's own output, if any, to stderr.
   const int answers = ::dup(STDOUT_FILENO);
