@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -298,6 +299,13 @@ double read_time_limit(const fs::path& path) {
   return std::max(60.0, ec ? 0.0 : static_cast<double>(bytes) / 1e7);
 }
 
+/// The time limit as written in messages: "60", "0.5" (at most 3 significant digits).
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", seconds);
+  return text;
+}
+
 /// Reads the child's message until it closes the pipe; false if the time limit passed first.
 bool read_until_closed(int fd, double seconds, std::string& message) {
   using Clock = std::chrono::steady_clock;
@@ -353,8 +361,7 @@ void probe_in_child(const fs::path& path) {
   }
   if (!finished)
     throw ArchiveError(path.string() + ": corrupt: reading it did not finish within " +
-                       std::to_string(static_cast<long long>(limit)) +
-                       " s (the HDF5 library loops on it); the file cannot be used "
+                       seconds_text(limit) + " s (the HDF5 library loops on it); the file cannot be used "
                        "(GJKLAB_ARCHIVE_READ_SECONDS sets the limit)");
   if (WIFSIGNALED(status))
     throw ArchiveError(path.string() + ": corrupt: reading it made the HDF5 library crash (" +
