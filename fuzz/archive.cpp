@@ -122,18 +122,18 @@ void check_archive(const experiment::Archive& archive) {
 
 /// How long the worker may take over one file before it is killed and the file goes to
 /// read_archive_isolated: libhdf5 loops forever on some corrupt global heaps (a profile of a
-/// run found the workers in that loop 90 % of the time with a limit of 10 s, and 71 % with a
-/// limit of 1 s). A tenth of a second of the worker's CPU time, about 5 times its slowest
-/// read of a corpus file (20 ms, the 260 kB seed archives), or 10 s of wall time (the worker
-/// is starved beside other jobs). A file that a sound reader only reads slowly (libhdf5
-/// clearing a gigabyte it was asked for) is counted as timed out, not as a finding. The target
-/// sets read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS, wall time) to 0.5 s
-/// unless given (its child loops until then: at 2 s, the isolated reads of looping files were
-/// a sixth of a run's CPU time): both together stay within libFuzzer's -timeout
+/// run found the workers in that loop 90 % of the time with a limit of 10 s, 71 % with 1 s,
+/// and still 40 % with 0.1 s). 50 ms of the worker's CPU time, 2.5 times its slowest read of a
+/// corpus file (20 ms: five reads of each of the 60 largest files), or 10 s of wall time (the
+/// worker is starved beside other jobs). A file that a sound reader only reads slowly
+/// (libhdf5 clearing a gigabyte it was asked for) is counted as timed out, not as a finding.
+/// The target sets read_archive_isolated's own limit (GJKLAB_ARCHIVE_READ_SECONDS, wall time)
+/// to 0.25 s unless given (its child loops until then: at 2 s, the isolated reads of looping
+/// files were a sixth of a run's CPU time): both together stay within libFuzzer's -timeout
 /// (run_target.sh: 25 s).
-constexpr double kWorkerCpuSeconds = 0.1;
+constexpr double kWorkerCpuSeconds = 0.05;
 constexpr int kWorkerSeconds = 10;
-constexpr const char* kIsolatedReadSeconds = "0.5";
+constexpr const char* kIsolatedReadSeconds = "0.25";
 /// Inputs a worker reads before a new one replaces it, so that whatever a corrupt file leaves
 /// in libhdf5's state stays bounded.
 constexpr int kWorkerInputs = 2000;
