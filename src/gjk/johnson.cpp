@@ -2,6 +2,8 @@
 
 #include <bit>
 
+#include "gjklab/gjk/subsimplex.hpp"
+
 namespace gjklab {
 
 namespace {
@@ -96,6 +98,7 @@ JohnsonSolutionT<T> closest_point(const std::array<Vec3T<T>, 4>& y) {
       s.weights[i] = c.delta[x][i] / c.total[x];
       s.closest += s.weights[i] * y[i];
     }
+    refine_triangle_point(s, y);
     return s;
   }
   return s;
@@ -171,6 +174,7 @@ JohnsonSolutionT<T> solution_of(const JohnsonCofactorsT<T>& c, const std::array<
     s.weights[i] = c.delta[x][i] / c.total[x];
     s.closest += s.weights[i] * y[i];
   }
+  refine_triangle_point(s, y);
   return s;
 }
 

@@ -82,8 +82,11 @@ SubsimplexSolutionT<T> s2d(const std::array<Vec3T<T>, 4>& y, int i, int j, int k
     const std::array<T, 3> c = {projected_area(p0, y[j], y[k], u, w),
                                 projected_area(y[i], p0, y[k], u, w),
                                 projected_area(y[i], y[j], p0, u, w)};
-    if (same_sign(mu_max, c[0]) && same_sign(mu_max, c[1]) && same_sign(mu_max, c[2]))
-      return weighted<3>(y, {i, j, k}, c, mu_max);
+    if (same_sign(mu_max, c[0]) && same_sign(mu_max, c[1]) && same_sign(mu_max, c[2])) {
+      SubsimplexSolutionT<T> inside = weighted<3>(y, {i, j, k}, c, mu_max);
+      refine_triangle_point(inside, y);
+      return inside;
+    }
     // The origin's projection is beyond the edges opposite the failing vertices.
     SubsimplexSolutionT<T> best;
     if (!same_sign(mu_max, c[0])) best = nearer(best, s1d(y, j, k));

@@ -84,6 +84,7 @@ SubsimplexSolutionT<T> triangle(const std::array<Vec3T<T>, 4>& y, int i, int j, 
   s.weights[j] = v;
   s.weights[k] = w;
   s.closest = a + ab * v + ac * w;
+  refine_triangle_point(s, y);
   return s;
 }
 

@@ -10,6 +10,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/gjk/johnson.hpp"
+#include "gjklab/gjk/subsimplex.hpp"
 
 using namespace gjklab;
 
@@ -67,6 +68,7 @@ JohnsonSolution reference_closest(const std::array<Vec3, 4>& y, int count) {
       s.weights[i] = c.delta[x][i] / c.total[x];
       s.closest += s.weights[i] * y[i];
     }
+    refine_triangle_point(s, y);  // a point inside a triangle: its plane's projection
     return s;
   }
   return s;

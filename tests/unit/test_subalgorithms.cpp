@@ -3,7 +3,9 @@
 // point order, degenerate simplices, and the backup procedure's search.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <string>
 
 #include "../support/simplex_regions.hpp"
@@ -191,10 +193,12 @@ TEST_CASE("johnson backup: decides where Johnson's tests accept no subset",
   int candidates = 0;
   for (std::uint8_t x = 1; x < 16; ++x) {
     if (!johnson_subset_has_positive_cofactors(c, x, 4)) continue;
-    Vec3 v = Vec3::Zero();
+    JohnsonSolution candidate;
+    candidate.subset = x;
     for (int i = 0; i < 4; ++i)
-      if (x & (1u << i)) v += (c.delta[x][i] / c.total[x]) * y[i];
-    CHECK(backup.closest.squaredNorm() <= v.squaredNorm());
+      if (x & (1u << i)) candidate.closest += (c.delta[x][i] / c.total[x]) * y[i];
+    refine_triangle_point(candidate, y);  // as every sub-algorithm evaluates a triangle's point
+    CHECK(backup.closest.squaredNorm() <= candidate.closest.squaredNorm());
     ++candidates;
   }
   CHECK(candidates >= 4);  // at least the singletons
@@ -212,4 +216,43 @@ TEST_CASE("johnson backup: decides where Johnson's tests accept no subset",
   CHECK(JohnsonBackupSubAlgorithm{}.reduce(backup_simplex, out));
   CHECK(backup_simplex.size() == std::popcount(static_cast<unsigned>(backup.subset)));
   CHECK(out.v == backup.closest);
+}
+
+TEST_CASE(
+    "a triangle 2.6e-10 from the origin (fcl issue 445's boxes): every sub-algorithm's point is "
+    "normal to the face",
+    "[unit][subalgorithm]") {
+  // The triangle GJK ends on for the rotated stacked boxes of fcl issue 445, whose difference
+  // holds the origin 4.6e-11 deep: vertices A[2] − B[5], A[2] − B[6] and A[3] − B[4] of
+  // tests/regression/data/fcl_445_stacked_rotated_boxes_touching.jsonl, 0.25 from the origin,
+  // with the plane 2.6e-10 from it. v = Σ λ y cancels to 1e-9 of the points' size and was
+  // tilted off the face normal by 1e-7: the triangle's own vertex then had v·y = −5e-18, below
+  // ‖v‖² = 6.8e-20, and looked like a support point beyond the origin. The plane's projection
+  // is normal to the face to rounding: v·y_k = ‖v‖² within 1e-6 of ‖v‖² for every vertex.
+  const Vec3 a2(0x1.4bf4641e75b3ep+0, 0x1.a5c0dea505c07p+0, 0x1.a02756e7a8c1cp-2);
+  const Vec3 a3(0x1.4bf46417b4d0ep+0, 0x1.a5c0de8f0a4fep+0, 0x1.2a993307b1f8cp-1);
+  const Vec3 b4(0x1.149bf2813b68ap+0, 0x1.8a811a21b3508p+0, 0x1.a02756672fc7fp-2);
+  const Vec3 b5(0x1.149bf280b53bbp+0, 0x1.8a811a20087eap+0, 0x1.ed2890f9d2cd4p-2);
+  const Vec3 b6(0x1.660d0b52d409ep+0, 0x1.b29a0eed329c5p+0, 0x1.a027567df24dep-2);
+  const std::array<Vec3, 4> y = {a2 - b5, a2 - b6, a3 - b4, Vec3::Zero()};
+  const auto check_normal = [&](const Vec3& v, std::uint8_t subset) {
+    CHECK(subset == 0b0111);
+    CHECK(v.norm() == Approx(2.6033708e-10).epsilon(1e-6));
+    for (int k = 0; k < 3; ++k)
+      CHECK(std::abs(v.dot(y[k]) - v.squaredNorm()) <= 1e-6 * v.squaredNorm());
+  };
+  const JohnsonSolution johnson = johnson_closest_point(y, 3);
+  check_normal(johnson.closest, johnson.subset);
+  const SubsimplexSolution sv = signed_volumes_closest_point(y, 3);
+  check_normal(sv.closest, sv.subset);
+  const SubsimplexSolution voronoi = voronoi_closest_point(y, 3);
+  check_normal(voronoi.closest, voronoi.subset);
+  // The weighted sum itself, for contrast: off the normal by far more than rounding.
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    sum += johnson.weights[k] * y[k];
+  double worst = 0;
+  for (int k = 0; k < 3; ++k)
+    worst = std::max(worst, std::abs(sum.dot(y[k]) - sum.squaredNorm()));
+  CHECK(worst > 10 * sum.squaredNorm());
 }

@@ -1,7 +1,12 @@
 // Penetration depth with the expanding polytope algorithm (EPA; van den Bergen 2001), started
 // from the final simplex of GJK.
 //
-// When GJK (gjk_distance) reports an intersection, its final simplex holds the origin. EPA
+// The GJK phase is Johnson's sub-algorithm with van den Bergen's backup procedure
+// (gjk-johnson-backup), as in van den Bergen's own GJK-EPA: plain Johnson's stops with
+// degenerate_simplex where no subset passes its tests (fcl issue 390's boxes, 1.7e-8 apart,
+// answered 2.0e-8), and the backup gives the same answer wherever plain Johnson's decides.
+//
+// When GJK reports an intersection, its final simplex holds the origin. EPA
 // first blows that simplex up to a tetrahedron inside A − B (searching support points off the
 // simplex's line or plane when it has fewer than four points or is flat; the origin may end
 // up on the tetrahedron's boundary), then repeats:
@@ -59,6 +64,7 @@
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
+#include "gjklab/gjk/subalgorithms.hpp"
 
 namespace gjklab {
 
@@ -486,8 +492,15 @@ EpaResultT<T> epa_from_gjk(const A& a, const B& b, const DistanceResultT<T>& gjk
   return finish(stop);
 }
 
-/// `epa`: GJK distance (Johnson's sub-algorithm), then EPA when the shapes intersect, in the
-/// shapes' scalar type (double, or float / long double for ScalarCloud).
+/// EPA's GJK phase: the distance query with Johnson's sub-algorithm and its backup procedure.
+template <SupportMap A, SupportMap B>
+DistanceResultT<shape_scalar_t<A>> epa_gjk_phase(const A& a, const B& b,
+                                                 const GjkDistanceOptions& options) {
+  return gjk_distance_with<JohnsonBackupSubAlgorithm>(a, b, options);
+}
+
+/// `epa`: GJK distance (Johnson's sub-algorithm with the backup procedure), then EPA when the
+/// shapes intersect, in the shapes' scalar type (double, or float / long double for ScalarCloud).
 template <SupportMap A, SupportMap B, class T = shape_scalar_t<A>>
 EpaResultT<T> gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
                       const EpaOptions& options, EpaPolytopeT<T>& ws) {
@@ -498,12 +511,12 @@ EpaResultT<T> gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_opti
     if (const auto t = detail::recentring_of(a, b, gjk_options.recenter)) {
       const A moved_a = a.translated(-*t), moved_b = b.translated(-*t);
       EpaResultT<T> out =
-          epa_from_gjk(moved_a, moved_b, gjk_distance(moved_a, moved_b, gjk_options), options, ws);
+          epa_from_gjk(moved_a, moved_b, epa_gjk_phase(moved_a, moved_b, gjk_options), options, ws);
       detail::translate_answer<T>(out, *t);
       return out;
     }
   }
-  return epa_from_gjk(a, b, gjk_distance(a, b, gjk_options), options, ws);
+  return epa_from_gjk(a, b, epa_gjk_phase(a, b, gjk_options), options, ws);
 }
 
 template <SupportMap A, SupportMap B>

@@ -425,8 +425,9 @@ Vec3T<T> start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistance
 }
 
 /// What becomes of a step whose simplex plus w was solved: taken (‖v‖ decreased, or a bounded
-/// stall), the momentum dropped (restart), or the query stops with no_progress.
-enum class StepOutcome : std::uint8_t { progressed, stalled, restart, stop };
+/// stall), the momentum dropped (restart), or the query stops: converged when the gap is within
+/// its rounding (optimal), else with no_progress (stop).
+enum class StepOutcome : std::uint8_t { progressed, stalled, restart, optimal, stop };
 
 /// The quantities of one iteration that the step needs: ‖v‖², v·s and ‖s‖² for the support
 /// point s, and whether separation is proven.
@@ -470,12 +471,16 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<T, Observer>& q,
   }
   // The upper bound ‖v‖ must decrease strictly. When rounding hides the decrease, a plain
   // query takes the step only as a bounded stall (may_stall), else keeps the old v and stops;
-  // an accelerated query drops its momentum instead.
+  // an accelerated query drops its momentum instead. The stop is convergence when the gap
+  // ‖v‖² − v·w is not certified (within the rounding of its two products): then v·w/‖v‖ is a
+  // lower bound of the distance to that rounding, and ‖v‖ is within 4·kDotRoundoff·(‖v‖ + ‖w‖)
+  // of the distance, the precision of the pair's scale (near contact, where ‖v‖ ≪ ‖w‖, no
+  // relative gap of ‖v‖² can be met). A certified gap left is a descent cut short: no_progress.
   auto judge = [&](T new_vv, bool keeps_next) {
     if (new_vv < in.vv) return StepOutcome::progressed;
     if (accelerated) return StepOutcome::restart;
     if (may_stall(in.vv, in.vw, in.ww, new_vv, keeps_next, stalls)) return StepOutcome::stalled;
-    return StepOutcome::stop;
+    return gap_certified(in.vv, in.vw, in.ww) ? StepOutcome::stop : StepOutcome::optimal;
   };
   const auto taken = [](StepOutcome o) {
     return o == StepOutcome::progressed || o == StepOutcome::stalled;
@@ -502,6 +507,8 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<T, Observer>& q,
     case StepOutcome::restart:
       accelerated = false;
       return {GjkStep::momentum_restart, std::nullopt};
+    case StepOutcome::optimal:
+      return {GjkStep::gap_converged, DistanceStop{Termination::converged, false}};
     case StepOutcome::stop:
       return {GjkStep::no_progress, DistanceStop{Termination::no_progress, false}};
     case StepOutcome::stalled:

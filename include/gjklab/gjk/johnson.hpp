@@ -32,7 +32,7 @@ struct JohnsonSolutionT {
   bool found = false;                   ///< false when no subset passed both tests
   std::uint8_t subset = 0;              ///< bitmask of the chosen sub-simplex X
   std::array<T, 4> weights{};           ///< barycentric weights λ_i = Δ_i(X)/Δ(X); 0 outside X
-  Vec3T<T> closest = Vec3T<T>::Zero();  ///< v = Σ λ_i y_i
+  Vec3T<T> closest = Vec3T<T>::Zero();  ///< v = Σ λ_i y_i (three: refine_triangle_point)
 };
 using JohnsonSolution = JohnsonSolutionT<double>;
 

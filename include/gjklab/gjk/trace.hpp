@@ -18,7 +18,7 @@ namespace gjklab {
 /// Which branch of the GJK loop fired in an iteration (`continued`: none, the loop goes on).
 enum class GjkStep : std::uint8_t {
   continued,         ///< the simplex was reduced and ‖v‖ decreased
-  gap_converged,     ///< ‖v‖² − v·w within the relative/absolute tolerance
+  gap_converged,     ///< ‖v‖² − v·w within tolerance, or within rounding and ‖v‖ stuck
   repeated_support,  ///< w is already a vertex of the simplex
   contact,           ///< the simplex encloses the origin, or ‖v‖ is rounding noise
   separated,         ///< (boolean GJK) the support point did not pass the origin
