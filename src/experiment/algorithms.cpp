@@ -669,7 +669,8 @@ AlgorithmInfo epa_entry() {
   return {
       .name = "epa",
       .kind = AnswerKind::distance,
-      .description = "gjk-johnson, then the expanding polytope algorithm for the penetration depth",
+      .description =
+          "gjk-johnson-backup, then the expanding polytope algorithm for the penetration depth",
       .run = run_epa,
       .depth = true,
       .run_swept = swept_epa,
