@@ -39,11 +39,17 @@ bool report_in_libhdf5 = false;
 /// Whether the report's first frame outside the sanitizer runtime and the C library is in
 /// libhdf5, from the frames' addresses: the worker runs with symbolize=0 (fuzz/archive.cpp),
 /// since starting the symbolizer in every worker that dies on a libhdf5 crash (a few in a
-/// hundred inputs) took longer than all the reads. The runtime's functions (interceptors,
-/// __asan_*) are the executable's exported symbols; gjklab's own functions are not exported,
-/// so dladdr names none for them.
+/// hundred inputs) took longer than all the reads. The runtime's entry points (interceptors,
+/// __asan_*) are the executable's exported symbols; its internal helpers and gjklab's own
+/// functions are not exported, so dladdr names neither. A helper is always called by an entry
+/// point (MemcmpInterceptorCommon by __interceptor_memcmp, the frame below it): unnamed frames
+/// of the executable count as the runtime's only above a named one. An unnamed frame of the
+/// executable below a named one is gjklab's code (a finding), and so is one directly above
+/// libhdf5 (a callback that libhdf5 called).
 bool frames_in_libhdf5(std::string_view report) {
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  bool seen_entry_point = false;
+  bool helpers_closed = true;  // every unnamed frame so far has a named entry point below it
   for (std::size_t at = report.find("    #"); at != std::string_view::npos;
        at = report.find("    #", at + 1)) {
     const std::size_t hex = report.find("0x", at);
@@ -53,12 +59,18 @@ bool frames_in_libhdf5(std::string_view report) {
     if (pc == 0 || ::dladdr(reinterpret_cast<void*>(pc), &info) == 0 || !info.dli_fname)
       return false;
     const std::string_view module = info.dli_fname;
-    if (module.find("libhdf5") != std::string_view::npos) return true;
+    if (module.find("libhdf5") != std::string_view::npos) return helpers_closed;
     if (module.find("libc.so") != std::string_view::npos) continue;
     const bool in_self = std::filesystem::path(module) == self || module == "" ||
                          std::filesystem::weakly_canonical(std::string(module)) == self;
-    if (in_self && info.dli_sname) continue;  // the sanitizer runtime
-    return false;
+    if (!in_self) return false;
+    if (info.dli_sname) {  // a runtime entry point
+      seen_entry_point = true;
+      helpers_closed = true;
+      continue;
+    }
+    if (seen_entry_point) return false;  // gjklab's code below the runtime
+    helpers_closed = false;              // a runtime helper, if an entry point follows
   }
   return false;
 }
