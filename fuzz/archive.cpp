@@ -308,12 +308,12 @@ extern "C" int LLVMFuzzerInitialize(int*, char*** argv) {
   // A worker that has exited makes a write to its pipe raise SIGPIPE: an error return instead.
   ::signal(SIGPIPE, SIG_IGN);
   std::atexit([] {
-    std::fprintf(stderr,
-                 "archive target: %ld files read by the worker, %ld refused, %ld that ended it "
-                 "(%ld of them still reading at the limit; %ld then read by read_archive_isolated); "
-                 "%ld workers started\n",
-                 counts.reads, counts.threw, counts.died, counts.timed_out, counts.isolated,
-                 counts.workers);
+    std::fprintf(
+        stderr,
+        "archive target: %ld files read by the worker, %ld refused, %ld that ended it "
+        "(%ld of them still reading at the limit; %ld then read by read_archive_isolated); "
+        "%ld workers started\n",
+        counts.reads, counts.threw, counts.died, counts.timed_out, counts.isolated, counts.workers);
   });
   return 0;
 }

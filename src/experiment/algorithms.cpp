@@ -666,17 +666,16 @@ AlgorithmInfo gjk_bool_entry() {
 }
 
 AlgorithmInfo epa_entry() {
-  return {
-      .name = "epa",
-      .kind = AnswerKind::distance,
-      .description =
-          "gjk-johnson-backup, then the expanding polytope algorithm for the penetration depth",
-      .run = run_epa,
-      .depth = true,
-      .run_swept = swept_epa,
-      .run_at_precision = at_precision<EpaIn>,
-      .options = epa_option_schema(),
-      .bench = bench_epa};
+  return {.name = "epa",
+          .kind = AnswerKind::distance,
+          .description =
+              "gjk-johnson-backup, then the expanding polytope algorithm for the penetration depth",
+          .run = run_epa,
+          .depth = true,
+          .run_swept = swept_epa,
+          .run_at_precision = at_precision<EpaIn>,
+          .options = epa_option_schema(),
+          .bench = bench_epa};
 }
 
 AlgorithmInfo sat_entry() {

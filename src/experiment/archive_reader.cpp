@@ -361,7 +361,8 @@ void probe_in_child(const fs::path& path) {
   }
   if (!finished)
     throw ArchiveError(path.string() + ": corrupt: reading it did not finish within " +
-                       seconds_text(limit) + " s (the HDF5 library loops on it); the file cannot be used "
+                       seconds_text(limit) +
+                       " s (the HDF5 library loops on it); the file cannot be used "
                        "(GJKLAB_ARCHIVE_READ_SECONDS sets the limit)");
   if (WIFSIGNALED(status))
     throw ArchiveError(path.string() + ": corrupt: reading it made the HDF5 library crash (" +
