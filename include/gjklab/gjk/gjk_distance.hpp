@@ -521,6 +521,31 @@ StepVerdict solve_step(const Sub& sub, DistanceQueryState<T, Observer>& q,
   return {GjkStep::continued, std::nullopt};
 }
 
+/// The iteration's search direction: the momentum direction while the query is accelerated,
+/// else v. A vanishing or non-finite momentum direction carries no information: the query goes
+/// plain from there.
+template <class T, class Directions>
+Vec3T<T> search_direction(Directions& directions, int iteration, const Vec3T<T>& v,
+                          bool& accelerated) {
+  if constexpr (Directions::momentum) {
+    if (accelerated) {
+      const Vec3T<T> d = directions.direction(iteration, v);
+      if (is_finite(d) && !is_zero(d)) return d;
+      accelerated = false;
+    }
+  }
+  return v;
+}
+
+/// What the support point s found in direction −d says: the plane d·x = d·s supports A − B, so
+/// for d·s > 0 the distance is at least d·s/‖d‖, and d·s beyond its rounding certifies that the
+/// shapes do not intersect (dw = d·s, dd = ‖d‖², ww = ‖s‖²).
+template <class T>
+void note_support_plane(T& lower_bound, bool& separation_proven, T dw, T dd, T ww) {
+  if (dw > 0) lower_bound_update(lower_bound, dw, dd);
+  if (!separation_proven && separation_certified(dw, dd, ww)) separation_proven = true;
+}
+
 /// The GJK distance loop of every variant: the search direction comes from `directions` (see
 /// directions.hpp), everything else is shared: the cold or warm start, the stopping tests, the
 /// separation certificate, the sub-algorithm's step, stalls and the momentum restart.
@@ -554,17 +579,7 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
   for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
     const Vec3T<T> v = best.v;
     const T vv = v.squaredNorm();
-    Vec3T<T> d = v;
-    if constexpr (Directions::momentum) {
-      if (accelerated) {
-        d = directions.direction(out.iterations, v);
-        // A vanishing or non-finite momentum direction carries no information: go plain.
-        if (!is_finite(d) || is_zero(d)) {
-          accelerated = false;
-          d = v;
-        }
-      }
-    }
+    const Vec3T<T> d = search_direction(directions, out.iterations, v, accelerated);
     auto trace = [&](const SimplexVertexT<T>& w, T vw, GjkStep step) {
       q.trace(-d, w, vv, vw, step);
     };
@@ -577,14 +592,10 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
     directions.observe(next.w);
     const T vw = v.dot(next.w);
     const T ww = next.w.squaredNorm();
-    if (accelerated) {
-      // The plane d·x = d·s supports A − B: d·s/‖d‖ is a lower bound of the distance.
-      const T dw = d.dot(next.w), dd = d.squaredNorm();
-      if (dw > 0) lower_bound_update(q.lower_bound, dw, dd);
-      if (!separation_proven && separation_certified(dw, dd, ww)) separation_proven = true;
-    } else if (vw > 0) {
-      lower_bound_update(q.lower_bound, vw, vv);
-    }
+    if (accelerated)
+      note_support_plane(q.lower_bound, separation_proven, d.dot(next.w), d.squaredNorm(), ww);
+    else
+      note_support_plane(q.lower_bound, separation_proven, vw, vv, ww);
 
     // The duality gap at s: the stopping test when plain, the restart test when accelerated.
     const bool gap_met = gap_converged(options, vv, vw);
@@ -604,9 +615,6 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
       trace(next, vw, GjkStep::repeated_support);
       return {Termination::converged, false};
     }
-    if (!accelerated && !separation_proven && separation_certified(vw, vv, ww))
-      separation_proven = true;
-
     const StepVerdict verdict =
         solve_step(sub, q, next, StepInputs<T>{vv, vw, ww, separation_proven}, accelerated, stalls);
     const bool last = out.iterations == options.max_iterations;
