@@ -160,6 +160,49 @@ TEST_CASE("public bug reports of peer libraries: gjklab's own algorithms right o
       {"fcl_493_kissing_boxes_0p5.jsonl", true, 5.3810564310687815e-17},
       // fcl issue 508: unit boxes 4 apart along y; libccd answered 3.16228 instead of 3.
       {"fcl_508_unit_boxes_4_apart_along_y.jsonl", false, 3},
+      // Cylinders below are prisms inscribed in the reported cylinder (128, 48 or 256 sides)
+      // with a corner where the cylinder is nearest the other shape.
+      // coal issue 37: GJK did not converge on a cylinder (r 0.06) and a thin box.
+      {"coal_37_cylinder128_box_gjk_no_convergence.jsonl", false, 3.5797189417593125e-05},
+      // drake issue 21234: FCL's "origin is outside of the polytope" on a lying cylinder and a
+      // plate 3.3e-11 away, and on two convex meshes (38 and 43 vertices) that touch.
+      {"drake_21234_cylinder128_box_plate.jsonl", false, 3.3131724898759226e-11},
+      {"drake_21234_convex_convex_mesh_hulls.jsonl", true, 0},
+      // fcl issue 319: EPA threw "this should not happen" on a box and a cylinder 0.025 apart.
+      {"fcl_319_box_cylinder48_expandpolytope.jsonl", false, 0.025000000000015787},
+      // fcl issue 391: expandPolytope failed on a cylinder and a sphere 1.5e-7 deep.
+      {"fcl_391_cylinder256_sphere_expandpolytope.jsonl", true, 1.533394127480464e-07},
+      // fcl issue 628: a box inside a box sharing faces; FCL gave depth 1 (and 0 with z
+      // stretched to 2) for 0.2.
+      {"fcl_628_nested_boxes_shared_faces.jsonl", true, 0.19999999999999996},
+      {"fcl_628_nested_boxes_shared_faces_z2.jsonl", true, 0.19999999999999996},
+      // mujoco issue 3476: a phantom contact 71 deep between two boxes (the pose of the fix's
+      // pull request 3478).
+      {"mujoco_3476_boxbox_phantom_deep_contact.jsonl", true, 6.837437405256706e-07},
+      // bepu issue 101: a capsule (r 0.5) on a triangle with one vertex raised by 1e-6.
+      {"bepu_101_capsule_r0p5_vs_triangle_tilted_1em6_penetrating.jsonl", true,
+       0.10000047384185727},
+      // Jolt issue 1008: depth 0.397 for a cylinder 1.8e-4 from a parallel triangle at x = 42.
+      {"jolt_1008_cylinder_r0p25_vs_parallel_triangle_at_x42.jsonl", false, 0.00017686704662339895},
+      // Jolt issue 2103: a cast from touching contact gave depth 7.25 for a cylinder and a
+      // capsule of radius 7.2 (the start pose only).
+      {"jolt_2103_cylinder_r0p4975_touching_capsule_r7p2.jsonl", true, 4.4299946017750395e-06},
+      // Jolt issue 940: depths up to 16 for a capsule nearly parallel to a long triangle.
+      {"jolt_940_capsule_r0p5_vs_long_parallel_triangle_near_touching.jsonl", false,
+       0.019998860415620386},
+      // libccd issue 17: a wrong contact for a 20 × 0.1 × 20 box and a small box.
+      {"libccd_17_box_20x0p1x20_vs_small_box_0p2x0p15x0p2_penetrating.jsonl", true,
+       0.024999999999999994},
+      // ncollide issue 157: no contact for a cylinder and a cuboid at z = 60.
+      {"ncollide_157_cylinder_r0p5_vs_cuboid_at_z60_intersecting.jsonl", true,
+       0.019559924821133664},
+      // newton issue 3773: MPR gave 58.8 for a small cylinder 0.0617 deep in a 320 m triangle.
+      {"newton_3773_cylinder_r0p02_on_320m_triangle_penetrating.jsonl", true, 0.061719150654285605},
+      // parry issue 253: EPA panicked on a triangle's vertex touching another's edge (float
+      // inputs: 4.1e-8 apart).
+      {"parry_253_triangle_vertex_touching_triangle_edge.jsonl", false, 4.0671142743163024e-08},
+      // parry issue 315: wrong contact for unit cubes touching on the plane x = 1.
+      {"parry_315_unit_cuboids_touching_on_x1.jsonl", true, 0},
   };
   for (const Report& r : reports) {
     DYNAMIC_SECTION(r.file) {
@@ -173,4 +216,63 @@ TEST_CASE("public bug reports of peer libraries: gjklab's own algorithms right o
       }
     }
   }
+}
+
+TEST_CASE("fcl issue 399, box vs thin wall 3.4e-5 deep: every distance variant finds contact",
+          "[regression]") {
+  // A 0.238 × 0.157 × 0.25 box against a 0.01 × 0.78 × 0.25 wall, both turned about z (fcl
+  // issue 399: EPA was called wrongly). gjk-johnson, gjk-johnson-backup, gjk-voronoi and epa
+  // answered "apart, 1.7e-9 (2.5e-10)", converged: GJK's last triangle is a sliver holding the
+  // origin with weights (0.65, 0.35, 3.7e-4), and its v = Σ λ y lost 1.7e-9 to the weights'
+  // rounding. Its plane passes through the origin, and the plane's foot is now taken where
+  // every weight is too large for that distance to move it outside (foot_inside_triangle).
+  const auto exact =
+      check_every_algorithm(testing::regression_case("fcl_399_box_thin_wall_epa.jsonl"));
+  CHECK(exact.intersect);
+  REQUIRE(exact.depth.has_value());
+  CHECK(*exact.depth == Approx(3.3810643999189686e-05).epsilon(1e-12));
+}
+
+TEST_CASE("fcl issue 398, thin box flush on a box 1.1e-16 apart: answers within the band",
+          "[regression]") {
+  // A 0.614 × 3 × 0.037 box on a 0.494 × 0.552 × 0.01 box, faces flush at z = 0.93 (fcl issue
+  // 398: EPA called with the origin outside the polytope). The faces are 1.1e-16 apart
+  // (exact), a relative 1e-16 of the pair: inside the touching band, where either boolean is
+  // right; every gjklab algorithm converges with a distance within 1e-10 of the size.
+  const auto c = testing::regression_case("fcl_398_thin_box_on_box_flush.jsonl");
+  const Polytope a(c.a), b(c.b);
+  const auto exact = exact::solve(c.a, c.b);
+  REQUIRE_FALSE(exact.intersect);
+  CHECK(exact.distance == Approx(1.1102230246251565e-16).epsilon(1e-9));
+  const double size = pair_size(c.a, c.b);
+  CHECK(exact.distance <= 1e-10 * size);
+  for (const auto& algorithm : experiment::algorithms()) {
+    if (algorithm.peer || algorithm.kind == experiment::AnswerKind::exact) continue;
+    INFO(algorithm.name);
+    const auto o = algorithm.run(a, b, {});
+    CHECK(o.termination == Termination::converged);
+    if (o.distance) CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * size);
+  }
+}
+
+TEST_CASE("parallel ridges 2e-8 deep: epa's GJK phase falls back to the signed volumes",
+          "[regression]") {
+  // Two wedges whose ridges cross at an angle of 2.2e-8 rad, 2.0e-8 deep (found by `gjklab
+  // hunt` against gjk-johnson-backup). Johnson's cofactors lose the last tetrahedron, whose
+  // face is a sliver 4 long and 4.4e-8 wide: gjk-johnson and gjk-johnson-backup stop with
+  // no_progress at "apart, 1.4e-9" and say so. epa's GJK phase then runs the signed volumes,
+  // which decide contact, and its depth is the exact one.
+  const auto c = testing::regression_case("parallel_ridges_2e-8_deep_johnson_no_progress.jsonl");
+  const Polytope a(c.a), b(c.b);
+  const auto exact = exact::solve(c.a, c.b, {.depth = true});
+  REQUIRE(exact.intersect);
+  REQUIRE(exact.depth.has_value());
+  CHECK(*exact.depth == Approx(2.01531e-08).epsilon(1e-6));
+  const auto johnson = experiment::find_algorithm("gjk-johnson-backup")->run(a, b, {});
+  CHECK(johnson.termination == Termination::no_progress);
+  const auto epa = experiment::find_algorithm("epa")->run(a, b, {});
+  CHECK(epa.intersect);
+  CHECK(epa.termination == Termination::converged);
+  REQUIRE(epa.depth.has_value());
+  CHECK(std::abs(*epa.depth - *exact.depth) <= 1e-6 * *exact.depth + 1e-10 * pair_size(c.a, c.b));
 }

@@ -24,6 +24,21 @@ struct SubsimplexSolutionT {
 };
 using SubsimplexSolution = SubsimplexSolutionT<double>;
 
+/// True if the point p at distance `moved` from Σ λ y (the weights λ of the triangle y_i y_j
+/// y_k, its plane's normal n = (y_j − y_i) × (y_k − y_i)) certainly lies inside the triangle:
+/// p's own weights differ from λ_k by at most (moved + rounding)/h_k, h_k = ‖n‖/‖opposite
+/// edge‖ the triangle's height over the edge opposite y_k, and every λ_k exceeds twice that.
+/// The rounding term, 64·ε·max‖y‖, covers the sum's and p's own rounding.
+template <class T>
+bool foot_inside_triangle(const Vec3T<T>& yi, const Vec3T<T>& yj, const Vec3T<T>& yk,
+                          const std::array<T, 3>& weights, T n_norm, T moved, T max_norm) {
+  const T shift = moved + 64 * std::numeric_limits<T>::epsilon() * max_norm;
+  const std::array<T, 3> opposite{(yk - yj).norm(), (yk - yi).norm(), (yj - yi).norm()};
+  for (int k = 0; k < 3; ++k)
+    if (!(weights[k] * n_norm > 2 * shift * opposite[k])) return false;
+  return true;
+}
+
 /// The closest point to the origin of the triangle y_i y_j y_k, for a sub-simplex whose weights
 /// put it inside the triangle: `weighted` is the sub-algorithm's v = Σ λ y. The projection onto
 /// the triangle's plane, v = n (y·n) / ‖n‖² with n = (y_j − y_i) × (y_k − y_i) and y the vertex
@@ -35,14 +50,19 @@ using SubsimplexSolution = SubsimplexSolutionT<double>;
 /// right answer. The projection replaces the sum only as a correction of the sum's rounding:
 ///  - where its direction is the more accurate one (‖e1‖‖e2‖/‖n‖ < max‖y‖/‖v‖, compared squared
 ///    on points scaled by 1/max‖y‖), and
-///  - where it lies within 64·ε·max‖y‖ (ε the machine epsilon) of the sum, a bound far above
-///    the sum's own rounding: farther away, the sub-algorithm's choice of the triangle was
-///    decided by rounding (a weight near 0 that is negative in exact arithmetic), the plane's
-///    foot lies outside the triangle, and ‖v‖ would drop below the distance (a needle triangle
-///    of parallel edges 1.2e-8 rad apart: 2.43e-11 for 2.71e-11).
+///  - where the plane's foot certainly lies inside the triangle: either within 64·ε·max‖y‖ (ε
+///    the machine epsilon) of the sum, a bound far above the sum's own rounding, or, farther
+///    away, where every weight is large enough that moving the point by that distance cannot
+///    make it negative (foot_inside_triangle). Otherwise the sub-algorithm's choice of the
+///    triangle was decided by rounding (a weight near 0 that is negative in exact arithmetic),
+///    the plane's foot lies outside the triangle, and ‖v‖ would drop below the distance (a
+///    needle triangle of parallel edges 1.2e-8 rad apart: 2.43e-11 for 2.71e-11). The second
+///    case is a sliver triangle whose weights lost 1e-9 of the sum to rounding while each is
+///    far from 0 (fcl issue 399's boxes, 3.4e-5 deep: the sum said "apart, 1.7e-9").
+
 template <class T>
 Vec3T<T> triangle_closest_point(const Vec3T<T>& yi, const Vec3T<T>& yj, const Vec3T<T>& yk,
-                                const Vec3T<T>& weighted) {
+                                const Vec3T<T>& weighted, const std::array<T, 3>& weights) {
   const T ni = yi.squaredNorm(), nj = yj.squaredNorm(), nk = yk.squaredNorm();
   const T mm = std::max({ni, nj, nk});
   if (!(mm > 0) || !std::isfinite(mm)) return weighted;
@@ -55,9 +75,13 @@ Vec3T<T> triangle_closest_point(const Vec3T<T>& yi, const Vec3T<T>& yj, const Ve
   if (!(nn > 0) || !(lhs < (nn / mm) / mm)) return weighted;
   const Vec3T<T>& nearest = ni <= nj ? (ni <= nk ? yi : yk) : (nj <= nk ? yj : yk);
   const Vec3T<T> projection = (nearest.dot(n) / nn) * n;
+  if (!is_finite(projection)) return weighted;
+  const T moved_squared = (projection - weighted).squaredNorm();
   const T slack = 64 * std::numeric_limits<T>::epsilon();
-  const bool correction = (projection - weighted).squaredNorm() <= slack * slack * mm;
-  return is_finite(projection) && correction ? projection : weighted;
+  if (moved_squared <= slack * slack * mm) return projection;
+  const bool inside = foot_inside_triangle(yi, yj, yk, weights, std::sqrt(nn),
+                                           std::sqrt(moved_squared), std::sqrt(mm));
+  return inside ? projection : weighted;
 }
 
 /// A sub-algorithm's solution with its v recomputed by triangle_closest_point when it keeps
@@ -69,7 +93,8 @@ void refine_triangle_point(Solution& s, const std::array<Vec3T<T>, 4>& y) {
   int count = 0;
   for (int i = 0; i < 4; ++i)
     if (s.subset & (1u << i)) kept[count++] = i;
-  s.closest = triangle_closest_point(y[kept[0]], y[kept[1]], y[kept[2]], s.closest);
+  s.closest = triangle_closest_point(y[kept[0]], y[kept[1]], y[kept[2]], s.closest,
+                                     {s.weights[kept[0]], s.weights[kept[1]], s.weights[kept[2]]});
 }
 
 }  // namespace gjklab
