@@ -40,7 +40,7 @@ const std::map<std::string, Accuracy> kAccuracy = {
     {"gjk-johnson", {1e-14, 2}},         // measured 1.2e-15, 1 no_progress
     {"gjk-johnson-backup", {1e-14, 2}},  // measured 1.2e-15, 1 no_progress
     {"gjk-voronoi", {1e-14, 1}},         // measured 1.1e-15
-    {"epa", {1e-14, 4}},                 // its GJK phase is gjk-johnson's
+    {"epa", {1e-14, 4}},                 // its GJK phase is gjk-johnson-backup's
     {"gjk-sv", {1e-12, 0}},              // measured 1.1e-13
     {"gjk-nesterov", {3e-12, 1}},        // measured 3.3e-13
     {"gjk-polyak", {1e-12, 1}},          // measured 1.1e-13

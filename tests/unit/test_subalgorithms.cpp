@@ -256,3 +256,33 @@ TEST_CASE(
     worst = std::max(worst, std::abs(sum.dot(y[k]) - sum.squaredNorm()));
   CHECK(worst > 10 * sum.squaredNorm());
 }
+
+TEST_CASE(
+    "a sliver triangle around the origin (fcl issue 399's box and wall): every sub-algorithm's "
+    "point is the origin",
+    "[unit][subalgorithm]") {
+  // The triangle GJK ends on for fcl issue 399's box and thin wall, whose difference holds the
+  // origin 3.4e-5 deep: vertices A[0] − B[4], A[4] − B[6] and A[4] − B[4] of
+  // tests/regression/data/fcl_399_box_thin_wall_epa.jsonl, all at z = 0, nearly collinear
+  // (the third 4e-5 off the line of the others), around the origin with weights (0.65, 0.35,
+  // 3.7e-4). Σ λ y lost 1.7e-9 to the weights' rounding, far beyond 64 ε of the points, so the
+  // plane's foot (the origin) was refused and the query ended "apart, 1.7e-9". Every weight
+  // is far above what that distance can change (foot_inside_triangle): the foot is taken.
+  const std::array<Vec3, 4> y = {Vec3(0x1.200e8af450eb8p-5, 0x1.68f1204972e74p-2, 0),
+                                 Vec3(-0x1.0e6d6e0ab46e8p-4, -0x1.52da2584b7aa8p-1, 0),
+                                 Vec3(0x1.79d121aaed8a0p-7, 0x1.db0da69972735p-4, 0), Vec3::Zero()};
+  const JohnsonSolution johnson = johnson_closest_point(y, 3);
+  REQUIRE(johnson.subset == 0b0111);
+  CHECK(johnson.weights[2] > 1e-4);
+  CHECK(johnson.closest.norm() <= 1e-15);
+  const SubsimplexSolution sv = signed_volumes_closest_point(y, 3);
+  CHECK(sv.closest.norm() <= 1e-15);
+  const SubsimplexSolution voronoi = voronoi_closest_point(y, 3);
+  REQUIRE(voronoi.subset == 0b0111);
+  CHECK(voronoi.closest.norm() <= 1e-15);
+  // The weighted sum itself, for contrast: a thousand times the points' rounding from 0.
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    sum += johnson.weights[k] * y[k];
+  CHECK(sum.norm() > 1e-12);
+}
