@@ -96,14 +96,15 @@ TEST_CASE("fcl issue 445, rotated stacked boxes 4.6e-11 deep: every distance var
   CHECK(*exact.depth == Approx(4.613859609769972e-11).epsilon(1e-9));
 }
 
-TEST_CASE("fcl issue 390, small box 1.7e-8 from a tall thin box: EPA's GJK phase converges",
+TEST_CASE("fcl issue 388, small box 1.7e-8 from a tall thin box: EPA's GJK phase converges",
           "[regression]") {
-  // A 0.03 × 0.12 × 0.1 box beside a 0.025 × 0.35 × 1.845 box; FCL's EPA threw "origin is
-  // outside of the polytope" (fcl issue 390). Plain Johnson's sub-algorithm finds no valid
-  // subset at the fourth iteration and stops with degenerate_simplex at 2.01e-8 (exact:
-  // 1.708e-8): gjk-johnson reports that, as Johnson's algorithm does; `epa`, whose GJK phase
-  // now has the backup procedure, converges to the right distance.
-  const auto c = testing::regression_case("fcl_390_small_box_vs_tall_thin_box.jsonl");
+  // A 0.03 × 0.12 × 0.1 box beside a 0.025 × 0.35 × 1.845 box; libccd's EPA inside FCL reached
+  // its unexpected validateNearestFeatureOfPolytopeBeingEdge error (fcl issue 388; FCL's
+  // test_distance_box_box_regression1). Plain Johnson's sub-algorithm finds no valid subset at
+  // the fourth iteration and stops with degenerate_simplex at 2.01e-8 (exact: 1.708e-8):
+  // gjk-johnson reports that, as Johnson's algorithm does; `epa`, whose GJK phase has the
+  // backup procedure, converges to the right distance.
+  const auto c = testing::regression_case("fcl_388_small_box_vs_tall_thin_box.jsonl");
   const Polytope a(c.a), b(c.b);
   const auto exact = exact::solve(c.a, c.b);
   REQUIRE_FALSE(exact.intersect);
@@ -203,6 +204,35 @@ TEST_CASE("public bug reports of peer libraries: gjklab's own algorithms right o
       {"parry_253_triangle_vertex_touching_triangle_edge.jsonl", false, 4.0671142743163024e-08},
       // parry issue 315: wrong contact for unit cubes touching on the plane x = 1.
       {"parry_315_unit_cuboids_touching_on_x1.jsonl", true, 0},
+      // Regression tests of other libraries, with their numbers (float ones rounded to float as
+      // the test does). coal's distance_box_box_4 ("failing unit test for box-box distance"):
+      // unit cubes 0.99 apart and coincident.
+      {"coal_distance_box_box_4_unit_cubes_0p99_apart_depth_0p01.jsonl", true,
+       0.010000000000000009},
+      {"coal_distance_box_box_4_coincident_unit_cubes_depth_1.jsonl", true, 1},
+      // coal's distance_triangle_triangle: "GJK fails when the triangles are close to each
+      // other but not colliding", and "in collision but distance slightly positive".
+      {"coal_gjk_triangle_triangle_case0_small_triangle_vs_long_sliver.jsonl", false,
+       0.001141518921945587},
+      {"coal_gjk_triangle_triangle_case1_touching_triangles.jsonl", false, 3.0376494096739505e-07},
+      // libccd issue 51: the origin against a nearly degenerate triangle.
+      {"libccd_51_origin_vs_near_degenerate_triangle.jsonl", false, 0.00025164402324674815},
+      // Jolt's CollideShapeTests: capsules on parallel triangles (pull requests 293 and 417),
+      // a long capsule on an embedded box, a box 0.0005 from a hull (a wrong normal), a small
+      // triangle near a large box hull, and discussion 1379's large separation distances.
+      {"jolt_pr293_capsule_r0p37_vs_parallel_triangle_penetrating.jsonl", true,
+       0.08033400037932657},
+      {"jolt_pr417_capsule_r0p42_vs_large_parallel_triangle_penetrating.jsonl", true,
+       0.11214197430714032},
+      {"jolt_long_capsule_r1p5_hh75_vs_embedded_box_deep.jsonl", true, 1.956257079260348},
+      {"jolt_box_vs_convex_hull_no_convex_radius_0p0005_apart.jsonl", false, 0.0004999637603759766},
+      {"jolt_small_triangle_vs_large_oriented_box_hull_no_contact.jsonl", false,
+       0.06278762830812301},
+      {"jolt_d1379_triangle_x_m0p1_inside_box_half10_depth_9p9.jsonl", true, 9.899999998509884},
+      {"jolt_d1379_sphere_r1_at_centre_of_box_half10_depth_11.jsonl", true, 11},
+      // Jolt issue 886 and parry issue 123: the start poses of casts that went wrong.
+      {"jolt_886_sphere_r0p2_vs_sliver_triangle.jsonl", false, 2.2223669523187692},
+      {"parry_123_ball_r0p375_vs_triangle_at_11p5_5p5.jsonl", false, 11.708045973594572},
   };
   for (const Report& r : reports) {
     DYNAMIC_SECTION(r.file) {

@@ -3,7 +3,7 @@
 //
 // The GJK phase is Johnson's sub-algorithm with van den Bergen's backup procedure
 // (gjk-johnson-backup), as in van den Bergen's own GJK-EPA: plain Johnson's stops with
-// degenerate_simplex where no subset passes its tests (fcl issue 390's boxes, 1.7e-8 apart,
+// degenerate_simplex where no subset passes its tests (fcl issue 388's boxes, 1.7e-8 apart,
 // answered 2.0e-8), and the backup gives the same answer wherever plain Johnson's decides.
 //
 // When GJK reports an intersection, its final simplex holds the origin. EPA
