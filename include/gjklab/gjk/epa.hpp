@@ -5,6 +5,7 @@
 // (gjk-johnson-backup), as in van den Bergen's own GJK-EPA: plain Johnson's stops with
 // degenerate_simplex where no subset passes its tests (fcl issue 388's boxes, 1.7e-8 apart,
 // answered 2.0e-8), and the backup gives the same answer wherever plain Johnson's decides.
+// Where even that stops other than converged, the signed volumes answer (epa_gjk_phase).
 //
 // When GJK reports an intersection, its final simplex holds the origin. EPA
 // first blows that simplex up to a tetrahedron inside A − B (searching support points off the
@@ -509,8 +510,9 @@ DistanceResultT<shape_scalar_t<A>> epa_gjk_phase(const A& a, const B& b,
   return signed_volumes;
 }
 
-/// `epa`: GJK distance (Johnson's sub-algorithm with the backup procedure), then EPA when the
-/// shapes intersect, in the shapes' scalar type (double, or float / long double for ScalarCloud).
+/// `epa`: GJK distance (epa_gjk_phase: Johnson's sub-algorithm with the backup procedure, the
+/// signed volumes where that fails), then EPA when the shapes intersect, in the shapes' scalar
+/// type (double, or float / long double for ScalarCloud).
 template <SupportMap A, SupportMap B, class T = shape_scalar_t<A>>
 EpaResultT<T> gjk_epa(const A& a, const B& b, const GjkDistanceOptions& gjk_options,
                       const EpaOptions& options, EpaPolytopeT<T>& ws) {
