@@ -306,3 +306,22 @@ TEST_CASE("parallel ridges 2e-8 deep: epa's GJK phase falls back to the signed v
   REQUIRE(epa.depth.has_value());
   CHECK(std::abs(*epa.depth - *exact.depth) <= 1e-6 * *exact.depth + 1e-10 * pair_size(c.a, c.b));
 }
+
+TEST_CASE("crossing wedges 1.9e-8 deep: epa's depth is right or flagged", "[regression]") {
+  // Two wedges whose ridges cross 1.9e-8 deep (found by `gjklab hunt --algorithm epa
+  // --objective not_converged`): the faces of A − B near the origin are slivers 2 long and
+  // 1e-8 wide, and EPA's polytope degenerates on them (it answered 1.26e-8 for 1.90e-8 and
+  // stopped with degenerate_simplex). The boolean is right; a depth that is off must never be
+  // reported as converged.
+  const auto c = testing::regression_case("crossing_wedges_1p9e-8_deep_epa_degenerate.jsonl");
+  const Polytope a(c.a), b(c.b);
+  const auto exact = exact::solve(c.a, c.b, {.depth = true});
+  REQUIRE(exact.intersect);
+  REQUIRE(exact.depth.has_value());
+  CHECK(*exact.depth == Approx(1.896726158175777e-08).epsilon(1e-9));
+  const auto epa = experiment::find_algorithm("epa")->run(a, b, {});
+  CHECK(epa.intersect);
+  REQUIRE(epa.depth.has_value());
+  const bool depth_right = std::abs(*epa.depth - *exact.depth) <= 1e-6 * *exact.depth;
+  CHECK((depth_right || epa.termination != Termination::converged));
+}
