@@ -39,6 +39,24 @@ bool foot_inside_triangle(const Vec3T<T>& yi, const Vec3T<T>& yj, const Vec3T<T>
   return true;
 }
 
+/// A bound of the rounding of n = e1 × e2 across n itself, times ‖n‖: the tilt of the computed
+/// normal. Each component of n is within 8u(|e1_a e2_b| + |e1_b e2_a|) (u the unit roundoff; the
+/// products, their difference and the rounding of the edges themselves, doubled), and only
+/// its part across n turns it: Σ_c δn_c·√(1 − n̂_c²). A plane's foot n (y·n)/‖n‖² then has its
+/// length, the distance GJK reports, within ‖y‖·tilt/‖n‖ of the exact foot's.
+template <class T>
+T normal_tilt(const Vec3T<T>& e1, const Vec3T<T>& e2, const Vec3T<T>& n, T n_norm) {
+  const T u = std::numeric_limits<T>::epsilon() / 2;
+  T tilt = 0;
+  for (int c = 0; c < 3; ++c) {
+    const int a = (c + 1) % 3, b = (c + 2) % 3;
+    const T dn = 8 * u * (std::abs(e1[a] * e2[b]) + std::abs(e1[b] * e2[a]));
+    const T nc = n[c] / n_norm;
+    tilt += dn * std::sqrt(std::max(T(0), 1 - nc * nc));
+  }
+  return tilt;
+}
+
 /// The closest point to the origin of the triangle y_i y_j y_k, for a sub-simplex whose weights
 /// put it inside the triangle: `weighted` is the sub-algorithm's v = Σ λ y. The projection onto
 /// the triangle's plane, v = n (y·n) / ‖n‖² with n = (y_j − y_i) × (y_k − y_i) and y the vertex
@@ -50,16 +68,20 @@ bool foot_inside_triangle(const Vec3T<T>& yi, const Vec3T<T>& yj, const Vec3T<T>
 /// right answer. The projection replaces the sum only as a correction of the sum's rounding:
 ///  - where its direction is the more accurate one (‖e1‖‖e2‖/‖n‖ < max‖y‖/‖v‖, compared squared
 ///    on points scaled by 1/max‖y‖), and
-///  - where the plane's foot certainly lies inside the triangle: either within 64·ε·max‖y‖ (ε
-///    the machine epsilon) of the sum, a bound far above the sum's own rounding, or, farther
-///    away, where every weight is large enough that moving the point by that distance cannot
-///    make it negative (foot_inside_triangle). Otherwise the sub-algorithm's choice of the
-///    triangle was decided by rounding (a weight near 0 that is negative in exact arithmetic),
-///    the plane's foot lies outside the triangle, and ‖v‖ would drop below the distance (a
-///    needle triangle of parallel edges 1.2e-8 rad apart: 2.43e-11 for 2.71e-11). The second
-///    case is a sliver triangle whose weights lost 1e-9 of the sum to rounding while each is
-///    far from 0 (fcl issue 399's boxes, 3.4e-5 deep: the sum said "apart, 1.7e-9").
-
+///  - where the plane's foot lies inside the triangle as far as rounding can tell: within
+///    64·ε·max‖y‖ (ε the machine epsilon) of the sum, a bound far above the sum's own
+///    rounding, or, farther away, where every weight is large enough that moving the point by that
+///    distance cannot make it negative (foot_inside_triangle). Otherwise the sub-algorithm's choice
+///    of the triangle was decided by rounding (a weight near 0 that is negative in exact
+///    arithmetic), the plane's foot lies outside the triangle, and ‖v‖ would drop below the
+///    distance (a needle triangle of parallel edges 1.2e-8 rad apart: 2.43e-11 for 2.71e-11). The
+///    second case is a sliver triangle whose weights lost 1e-9 of the sum to rounding while each is
+///    far from 0 (fcl issue 399's boxes, 3.4e-5 deep: the sum said "apart, 1.7e-9"). This
+///    second case also needs the foot's length to be as accurate as the points: the tilt of the
+///    computed normal (normal_tilt) moves it by up to ‖y‖·tilt/‖n‖, which must stay within
+///    64·ε·max‖y‖; a needle triangle's normal is too uncertain for that, and its foot came out
+///    below the distance (nearly parallel segments 1.34e-9 apart: 1.3397e-9, and a point
+///    5.8e-13 from a needle taken for contact).
 template <class T>
 Vec3T<T> triangle_closest_point(const Vec3T<T>& yi, const Vec3T<T>& yj, const Vec3T<T>& yk,
                                 const Vec3T<T>& weighted, const std::array<T, 3>& weights) {
@@ -79,8 +101,11 @@ Vec3T<T> triangle_closest_point(const Vec3T<T>& yi, const Vec3T<T>& yj, const Ve
   const T moved_squared = (projection - weighted).squaredNorm();
   const T slack = 64 * std::numeric_limits<T>::epsilon();
   if (moved_squared <= slack * slack * mm) return projection;
-  const bool inside = foot_inside_triangle(yi, yj, yk, weights, std::sqrt(nn),
-                                           std::sqrt(moved_squared), std::sqrt(mm));
+  const T n_norm = std::sqrt(nn), max_norm = std::sqrt(mm);
+  const bool length_accurate =
+      nearest.norm() * normal_tilt(e1, e2, n, n_norm) <= slack * max_norm * n_norm;
+  const bool inside = length_accurate && foot_inside_triangle(yi, yj, yk, weights, n_norm,
+                                                              std::sqrt(moved_squared), max_norm);
   return inside ? projection : weighted;
 }
 
