@@ -329,9 +329,10 @@ TEST_CASE("crossing wedges 1.9e-8 deep: epa's depth is right or flagged", "[regr
 TEST_CASE("needle triangles: no gjklab distance below the exact one, no false contact",
           "[regression]") {
   // Two nearly parallel segments 1.34e-9 apart, and a point 5.8e-13 from a needle triangle
-  // (random cases of a review of foot_inside_triangle). Taking a needle's plane foot where only
-  // its position in the plane was checked gave 1.3397e-9 (below the distance) and "contact":
-  // the computed normal's tilt moves the foot's length, and that is now bounded (normal_tilt).
+  // (random nearly parallel cases run against foot_inside_triangle). Taking a needle's plane
+  // foot where only its position in the plane was checked gave 1.3397e-9 (below the distance)
+  // and "contact": the computed normal's tilt moves the foot's length, and that is now bounded
+  // (normal_tilt).
   // A distance above the exact one is an upper bound and the query may stop there; one below
   // it is a wrong answer.
   for (const char* file : {"nearly_parallel_segments_1p34e-9_apart.jsonl",
