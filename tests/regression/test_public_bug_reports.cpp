@@ -16,6 +16,12 @@ using namespace gjklab;
 
 namespace {
 
+/// gjklab's own floating-point queries: every registered algorithm but the peers and the exact
+/// answers.
+bool own_floating_point(const experiment::AlgorithmInfo& algorithm) {
+  return !algorithm.peer && algorithm.kind != experiment::AnswerKind::exact;
+}
+
 /// Every algorithm that handles the case's radii: finite answers; gjklab's own agree with the
 /// exact answer (boolean; distance within 1e-10 × size; EPA's depth within its relative gap
 /// plus 1e-10 × size), and converge.
@@ -277,7 +283,7 @@ TEST_CASE("fcl issue 398, thin box flush on a box 1.1e-16 apart: answers within 
   const double size = pair_size(c.a, c.b);
   CHECK(exact.distance <= 1e-10 * size);
   for (const auto& algorithm : experiment::algorithms()) {
-    if (algorithm.peer || algorithm.kind == experiment::AnswerKind::exact) continue;
+    if (!own_floating_point(algorithm)) continue;
     INFO(algorithm.name);
     const auto o = algorithm.run(a, b, {});
     CHECK(o.termination == Termination::converged);
@@ -343,7 +349,7 @@ TEST_CASE("needle triangles: no gjklab distance below the exact one, no false co
     REQUIRE_FALSE(exact.intersect);
     const double size = pair_size(c.a, c.b);
     for (const auto& algorithm : experiment::algorithms()) {
-      if (algorithm.peer || algorithm.kind == experiment::AnswerKind::exact) continue;
+      if (!own_floating_point(algorithm)) continue;
       const auto o = algorithm.run(a, b, {});
       if (!o.distance) continue;  // gjk-bool
       INFO(file << " with " << algorithm.name << ": " << *o.distance << " for " << exact.distance);
