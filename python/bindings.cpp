@@ -229,6 +229,8 @@ py::dict query_dict(const QueryResult& r) {
     d["witness_a"] = vector_or_none(o.witness_a);
     d["witness_b"] = vector_or_none(o.witness_b);
   }
+  if (o.lower_bound) d["lower_bound"] = *o.lower_bound;
+  if (o.upper_bound) d["upper_bound"] = *o.upper_bound;
   d["iterations"] = o.iterations;
   d["support_calls"] = o.support_calls;
   d["termination"] = std::string(to_string(o.termination));
@@ -515,6 +517,10 @@ void def_result(py::module_& m) {
           "witness_a", [](const QueryResult& r) { return vector_or_none(r.outcome.witness_a); })
       .def_property_readonly(
           "witness_b", [](const QueryResult& r) { return vector_or_none(r.outcome.witness_b); })
+      .def_property_readonly("lower_bound",
+                             [](const QueryResult& r) { return r.outcome.lower_bound; })
+      .def_property_readonly("upper_bound",
+                             [](const QueryResult& r) { return r.outcome.upper_bound; })
       .def_property_readonly("iterations",
                              [](const QueryResult& r) { return r.outcome.iterations; })
       .def_property_readonly("support_calls",

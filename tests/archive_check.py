@@ -12,7 +12,7 @@ SHAPES = {"sphere_points": 0, "ball_points": 1, "cube_points": 2, "gaussian": 3,
           "box": 4, "cone": 5, "cylinder": 6, "uv_sphere": 7, "flat_points": 8,
           "collinear_points": 9, "duplicate_points": 10, "single_point": 11, "sliver": 12,
           "prism": 13, "pyramid": 14, "from_file": 15, "mesh": 16, "sphere": 17,
-          "capsule": 18}
+          "capsule": 18, "segment": 19, "needle": 20, "rod": 21, "wedge": 22, "plate": 23}
 PLACEMENTS = {"separated": 0, "overlapping": 1, "random": 2, "touching": 3, "as_given": 4}
 CONTACTS = {"separated": 0, "touching_band": 1, "intersecting": 2}
 METHODS = {"certified": 0, "qp": 1, "none": 2}
@@ -35,7 +35,8 @@ ALGORITHM = {"intersect": bool, "distance": np.float64, "abs_error": np.float64,
              "failure": FAILURES, "depth": np.float64, "depth_abs_error": np.float64,
              "depth_rel_error": np.float64, "witness_error_a": np.float64,
              "witness_error_b": np.float64, "witness_distance_error": np.float64,
-             "rounded_exact_distance": np.float64, "rounded_exact_depth": np.float64}
+             "rounded_exact_distance": np.float64, "rounded_exact_depth": np.float64,
+             "lower_bound": np.float64, "upper_bound": np.float64}
 ALGORITHM_VEC3 = ("witness_a", "witness_b")
 GEOMETRY = {"case_id": np.uint64, "a_offset": np.uint64, "a_count": np.uint64,
             "b_offset": np.uint64, "b_count": np.uint64}

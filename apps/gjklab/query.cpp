@@ -43,6 +43,9 @@ std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
     j["witness_a"] = {o.witness_a->x(), o.witness_a->y(), o.witness_a->z()};
     j["witness_b"] = {o.witness_b->x(), o.witness_b->y(), o.witness_b->z()};
   }
+  // The proven bracket of the distance (null for an upper bound that nothing proved).
+  if (o.lower_bound) j["lower_bound"] = *o.lower_bound;
+  if (o.upper_bound) j["upper_bound"] = *o.upper_bound;
   j["iterations"] = o.iterations;
   j["support_calls"] = o.support_calls;
   j["termination"] = to_string(o.termination);

@@ -1,5 +1,5 @@
 // The intersection certificate of a GJK tetrahedron, decided in double-word arithmetic with
-// proven error bounds (double_word.hpp).
+// proven error bounds (geometry/double_word.hpp).
 //
 // Four pairs give points W_k = a_k − b_k of A − B. The origin is Σ λ_k W_k with barycentric
 // weights λ_k = D_k / D, D = Σ D_k, where D_k is the signed volume of the tetrahedron with W_k
@@ -24,7 +24,7 @@
 #include <limits>
 #include <optional>
 
-#include "double_word.hpp"
+#include "gjklab/geometry/double_word.hpp"
 #include "filtered_distance.hpp"
 #include "wide_rounding.hpp"
 

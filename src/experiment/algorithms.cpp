@@ -56,6 +56,8 @@ Outcome from_distance(const DistanceResult& r) {
   o.distance = r.distance;
   o.witness_a = r.witness_a;
   o.witness_b = r.witness_b;
+  o.lower_bound = r.lower_bound;
+  o.upper_bound = r.upper_bound;
   o.iterations = r.iterations;
   o.support_calls = r.support_calls;
   o.termination = r.termination;

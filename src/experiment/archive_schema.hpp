@@ -191,6 +191,16 @@ inline constexpr auto kAlgorithmColumns = std::to_array<ColumnSpec<AlgorithmReco
      "world units: the same for the penetration depth, where the rounded clouds intersect; NaN "
      "otherwise",
      Presence::optional},
+    // Added with the proven stopping test: older archives read NaN.
+    {"lower_bound", &AlgorithmRecord::lower_bound,
+     "world units: the GJK distance query's proven lower bound of the exact distance (a support "
+     "plane with its rounding accounted for); NaN for other algorithms and older archives",
+     Presence::optional},
+    {"upper_bound", &AlgorithmRecord::upper_bound,
+     "world units: its proven upper bound (a point of the simplex with its rounding accounted "
+     "for; infinite where none could be proven); `termination` is `converged` exactly when "
+     "`upper_bound − lower_bound` is within the query's tolerance",
+     Presence::optional},
 });
 
 inline constexpr auto kGeometryColumns = std::to_array<ColumnSpec<GeometryRow>>({

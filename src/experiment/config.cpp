@@ -56,9 +56,11 @@ constexpr double kMinScale = 1e-100;  // keeps squared lengths far from underflo
 constexpr double kMaxScale = 1e100;
 
 constexpr ContactType kContactTypes[] = {
-    ContactType::face_face,      ContactType::edge_edge,   ContactType::vertex_face,
-    ContactType::edge_face,      ContactType::vertex_edge, ContactType::vertex_vertex,
-    ContactType::parallel_edges,
+    ContactType::face_face,      ContactType::edge_edge,         ContactType::vertex_face,
+    ContactType::edge_face,      ContactType::vertex_edge,       ContactType::vertex_vertex,
+    ContactType::parallel_edges, ContactType::crossing_segments, ContactType::needle_point,
+    ContactType::needle_segment, ContactType::thin_rods,         ContactType::crossing_wedges,
+    ContactType::tilted_plates,
 };
 
 template <typename Range>
@@ -642,9 +644,10 @@ void read_family_placement(const Section& s, const FamilyForm& form, const Place
   if (const toml::table* sub = s.subtable("placement"))
     f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
   const bool touching = f.placement.mode == PlacementMode::touching;
-  if (touching && (!form.is_contact || f.contact == ContactType::parallel_edges))
+  if (touching && (!form.is_contact || !exact_contact(f.contact)))
     s.fail(s.header_line(), "placement.mode",
-           "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges)");
+           "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges "
+           "or the thin contacts)");
 }
 
 /// `name`, or one made from what the family draws.

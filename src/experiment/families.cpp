@@ -240,6 +240,103 @@ struct ContactPair {
   ShapeKind shape_a, shape_b;
 };
 
+// ---- the thin contacts: A below z = 0, B above, touching at the origin ----------------------
+
+/// The rotation by θ about the z axis.
+Mat3 about_z(double theta) {
+  return Eigen::AngleAxisd(theta, Vec3::UnitZ()).toRotationMatrix();
+}
+
+/// The segment (±1, 0, 0) turned by θ about z.
+std::vector<Vec3> segment_at(double theta) {
+  const Mat3 turn = about_z(theta);
+  return {turn * Vec3(-1, 0, 0), turn * Vec3(1, 0, 0)};
+}
+
+/// The needle triangle (−1, 0, 0), (1, 0, 0), (1/2, 2/aspect, 0) in the plane z = 0.
+std::vector<Vec3> needle_triangle(double aspect) {
+  return {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 2 / aspect, 0)};
+}
+
+/// A k-gon prism of length 2 along x, radius ρ, with one vertex line on the x axis and the
+/// rest on the side `side` (−1: below z = 0), turned by θ about z.
+std::vector<Vec3> rod(int k, double rho, double side, double theta) {
+  const Mat3 turn = about_z(theta);
+  std::vector<Vec3> v;
+  for (int j = 0; j < k; ++j) {
+    const double phi = 2 * M_PI * j / k;
+    // Vertex 0 is on the axis exactly; the others around the centre (0, 0, side·ρ).
+    const double y = j == 0 ? 0.0 : -rho * std::sin(phi);
+    const double z = j == 0 ? 0.0 : side * rho * (1 - std::cos(phi));
+    for (double x : {-1.0, 1.0})
+      v.push_back(turn * Vec3(x, y, z));
+  }
+  return v;
+}
+
+/// A triangular prism of length 2 along x whose ridge is the x axis and which widens to
+/// ±1/aspect at z = side, turned by θ about z.
+std::vector<Vec3> sharp_wedge(double aspect, double side, double theta) {
+  const Mat3 turn = about_z(theta);
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0}) {
+    v.push_back(turn * Vec3(x, 0, 0));
+    for (double y : {-1.0, 1.0})
+      v.push_back(turn * Vec3(x, y / aspect, side));
+  }
+  return v;
+}
+
+/// A plate [−1, 1]² × [−1/aspect, 0], and one on top of it tilted by θ about its edge x = −1.
+ContactPair plates(double aspect, double theta) {
+  const double t = 1 / aspect;
+  const Mat3 tilt = Eigen::AngleAxisd(-theta, Vec3::UnitY()).toRotationMatrix();
+  std::vector<Vec3> a, b;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-t, 0.0}) {
+        a.emplace_back(x, y, z);
+        b.push_back(Vec3(-1, 0, 0) + tilt * Vec3(x + 1, y, z + t));
+      }
+  return {a, b, ShapeKind::plate, ShapeKind::plate};
+}
+
+ContactPair build_thin_contact(ContactType type, gsl_rng* r, const FamilySpec& family) {
+  const double theta = log_uniform(r, family.angle);
+  const double aspect = log_uniform(r, family.aspect);
+  switch (type) {
+    case ContactType::crossing_segments:
+      return {segment_at(0), segment_at(theta), ShapeKind::segment, ShapeKind::segment};
+    case ContactType::needle_point:
+      return {needle_triangle(aspect),
+              {Vec3(0.25, 0.5 / aspect, 0)},
+              ShapeKind::needle,
+              ShapeKind::single_point};
+    case ContactType::needle_segment: {
+      std::vector<Vec3> b = segment_at(theta);
+      for (Vec3& p : b)
+        p += Vec3(0.25, 1 / aspect, 0);
+      return {needle_triangle(aspect), b, ShapeKind::needle, ShapeKind::segment};
+    }
+    case ContactType::thin_rods: {
+      const int k = 3 + static_cast<int>(gsl_rng_uniform_int(r, 6));
+      return {rod(k, 1 / aspect, -1, 0), rod(k, 1 / aspect, 1, theta), ShapeKind::rod,
+              ShapeKind::rod};
+    }
+    case ContactType::crossing_wedges: {
+      // Half the cases nearly parallel ridges, half ridges crossing at any angle.
+      const double crossing = uniform(r) < 0.5 ? theta : 0.5 * M_PI * uniform(r);
+      return {sharp_wedge(aspect, -1, 0), sharp_wedge(aspect, 1, crossing), ShapeKind::wedge,
+              ShapeKind::wedge};
+    }
+    case ContactType::tilted_plates:
+      return plates(aspect, theta);
+    default:
+      break;
+  }
+  throw std::invalid_argument("build_thin_contact: not a thin contact family");
+}
+
 ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family) {
   const double dx = dyadic_offset(r), dy = dyadic_offset(r);
   const Vec3 x_axis = Vec3::UnitX();
@@ -264,6 +361,8 @@ ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family
     }
     case ContactType::none:
       break;
+    default:
+      return build_thin_contact(type, r, family);
   }
   throw std::invalid_argument("build_contact: not a contact family");
 }
@@ -405,6 +504,11 @@ constexpr ShapeGenerator kShapeGenerators[] = {
      }},
     {ShapeKind::prism, "", 32, [](int, void*, double) { return roof_below(); }, false, true},
     {ShapeKind::pyramid, "", 32, [](int, void*, double) { return pyramid(0, 0, -1); }, false, true},
+    {ShapeKind::segment, "", 2, [](int, void*, double) { return segment_at(0); }, false},
+    {ShapeKind::needle, "", 3, [](int, void*, double a) { return needle_triangle(a); }, false},
+    {ShapeKind::rod, "", 12, [](int, void*, double a) { return rod(6, 1 / a, -1, 0); }, false},
+    {ShapeKind::wedge, "", 6, [](int, void*, double a) { return sharp_wedge(a, -1, 0); }, false},
+    {ShapeKind::plate, "", 8, [](int, void*, double a) { return plates(a, 0).a; }, false},
 };
 
 }  // namespace
@@ -510,8 +614,9 @@ void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& o
   rec.placement = mode;
 }
 
-/// A contact configuration, turned by a signed axis permutation (exact), B moved by ε·size
-/// along the contact normal as the placement says, then scaled.
+/// A contact configuration, turned by a signed axis permutation (exact; the thin contacts as
+/// the family's `rotate` says), B moved by ε·size along the contact normal as the placement
+/// says, then scaled.
 void place_contact_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
   CaseRecord& rec = out.record;
   const ContactType type = family.contact_any
@@ -524,7 +629,10 @@ void place_contact_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out
   const double ratio = log_uniform(r, family.scale_ratio);
   for (Vec3& p : pair.b)
     p *= ratio;
-  const Mat3 turn = random_axis_rotation(r);
+  // The thin contacts turn as the family's `rotate` says (any rotation by default, so that
+  // their needles lie in no coordinate plane); the others by an exact axis permutation.
+  const bool thin = !exact_contact(type) && type != ContactType::parallel_edges;
+  const Mat3 turn = thin ? draw_rotation(r, family.rotation) : random_axis_rotation(r);
   for (auto* cloud : {&pair.a, &pair.b})
     for (Vec3& p : *cloud)
       p = turn * p;

@@ -27,9 +27,10 @@ constexpr auto kObjectiveNames = std::to_array<EnumName<HuntObjective>>({
     {HuntObjective::error, "error"},
     {HuntObjective::iterations, "iterations"},
     {HuntObjective::not_converged, "not_converged"},
+    {HuntObjective::false_convergence, "false_convergence"},
 });
 static_assert(in_value_order(kObjectiveNames) &&
-              ends_at(kObjectiveNames, HuntObjective::not_converged));
+              ends_at(kObjectiveNames, HuntObjective::false_convergence));
 
 /// A pair as the search moves it.
 struct Pair {
@@ -60,6 +61,19 @@ struct Judged {
 
 /// Scores above every non-failure (scores of non-failures stay below 1e6).
 constexpr double kFailureScore = 1e9;
+
+/// Whether a converged answer is false: its bracket misses the exact distance (nearest double,
+/// so each bound is widened by one unit in the last place), or, without a bracket, its
+/// boolean or its distance (relative error above the band) is wrong.
+bool falsely_converged(const Outcome& o, const AlgorithmRecord& r, double exact_distance,
+                       double band) {
+  if (o.lower_bound && o.upper_bound) {
+    const double below = std::nextafter(*o.lower_bound, -1.0);
+    const double above = std::nextafter(*o.upper_bound, std::numeric_limits<double>::infinity());
+    return exact_distance < below || exact_distance > above;
+  }
+  return !r.boolean_correct || (!std::isnan(r.rel_error) && r.rel_error > band);
+}
 
 /// The algorithm, its options and the objective, applied to a pair.
 class Judge {
@@ -116,6 +130,12 @@ class Judge {
         break;
       case HuntObjective::not_converged:
         j.failure = j.outcome.termination != Termination::converged;
+        j.objective_value = j.failure ? 1 : 0;
+        j.score = j.failure ? kFailureScore : closeness;
+        break;
+      case HuntObjective::false_convergence:
+        j.failure = j.outcome.termination == Termination::converged &&
+                    falsely_converged(j.outcome, r, j.exact.distance, config_.touching_band);
         j.objective_value = j.failure ? 1 : 0;
         j.score = j.failure ? kFailureScore : closeness;
         break;

@@ -35,6 +35,8 @@ AlgorithmRecord algorithm_record(const Outcome& o) {
   r.intersect = o.intersect;
   if (o.distance) r.distance = *o.distance;
   if (o.depth) r.depth = *o.depth;
+  if (o.lower_bound) r.lower_bound = *o.lower_bound;
+  if (o.upper_bound) r.upper_bound = *o.upper_bound;
   r.iterations = o.iterations;
   r.support_calls = o.support_calls;
   r.termination = o.termination;

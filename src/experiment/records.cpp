@@ -43,6 +43,11 @@ constexpr auto kShapeKindNames = std::to_array<EnumName<ShapeKind>>({
     {ShapeKind::mesh, "mesh"},
     {ShapeKind::sphere, "sphere"},
     {ShapeKind::capsule, "capsule"},
+    {ShapeKind::segment, "segment"},
+    {ShapeKind::needle, "needle"},
+    {ShapeKind::rod, "rod"},
+    {ShapeKind::wedge, "wedge"},
+    {ShapeKind::plate, "plate"},
 });
 constexpr auto kContactTypeNames = std::to_array<EnumName<ContactType>>({
     {ContactType::none, "none"},
@@ -53,6 +58,12 @@ constexpr auto kContactTypeNames = std::to_array<EnumName<ContactType>>({
     {ContactType::vertex_edge, "vertex-edge"},
     {ContactType::vertex_vertex, "vertex-vertex"},
     {ContactType::parallel_edges, "parallel-edges"},
+    {ContactType::crossing_segments, "crossing-segments"},
+    {ContactType::needle_point, "needle-point"},
+    {ContactType::needle_segment, "needle-segment"},
+    {ContactType::thin_rods, "thin-rods"},
+    {ContactType::crossing_wedges, "crossing-wedges"},
+    {ContactType::tilted_plates, "tilted-plates"},
 });
 constexpr auto kFailureClassNames = std::to_array<EnumName<FailureClass>>({
     {FailureClass::none, "none"},
@@ -70,9 +81,9 @@ constexpr auto kFailureClassNames = std::to_array<EnumName<FailureClass>>({
 static_assert(in_value_order(kPlacementNames) && ends_at(kPlacementNames, Placement::as_given));
 static_assert(in_value_order(kContactClassNames) &&
               ends_at(kContactClassNames, ContactClass::intersecting));
-static_assert(in_value_order(kShapeKindNames) && ends_at(kShapeKindNames, ShapeKind::capsule));
+static_assert(in_value_order(kShapeKindNames) && ends_at(kShapeKindNames, ShapeKind::plate));
 static_assert(in_value_order(kContactTypeNames) &&
-              ends_at(kContactTypeNames, ContactType::parallel_edges));
+              ends_at(kContactTypeNames, ContactType::tilted_plates));
 static_assert(in_value_order(kFailureClassNames) &&
               ends_at(kFailureClassNames, FailureClass::distance_error));
 

@@ -431,5 +431,5 @@ TEST_CASE("family registry: every generated shape is one row, and the parser fol
     CHECK(find_shape_generator(k) == nullptr);
     CHECK(kinds.count(k) == 0);
   }
-  CHECK(kinds.size() + 2 == static_cast<std::size_t>(ShapeKind::capsule) + 1);
+  CHECK(kinds.size() + 2 == static_cast<std::size_t>(ShapeKind::plate) + 1);
 }

@@ -65,6 +65,9 @@ struct Outcome {
   /// Closest points of separated pairs; for penetration algorithms that report them, the
   /// deepest points of intersecting pairs (witness_a − witness_b = depth·normal).
   std::optional<Vec3> witness_a, witness_b;
+  /// The GJK distance queries' proven bracket of the exact distance (DistanceResult's
+  /// lower_bound and upper_bound); absent for other algorithms.
+  std::optional<double> lower_bound, upper_bound;
   int iterations = 0;
   int support_calls = 0;
   Termination termination = Termination::converged;

@@ -37,6 +37,10 @@ enum class HuntObjective : std::uint8_t {
   error,          ///< the relative distance error; a failure above the touching band
   iterations,     ///< the iterations used; a failure at the step limit
   not_converged,  ///< any termination other than converged
+  /// a `converged` answer whose proven bracket (lower_bound, upper_bound) misses the exact
+  /// distance; for algorithms without a bracket, a `converged` answer that is wrong (its
+  /// boolean, or its distance beyond the touching band)
+  false_convergence,
 };
 
 std::string_view to_string(HuntObjective o);

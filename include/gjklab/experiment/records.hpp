@@ -89,6 +89,12 @@ enum class ShapeKind : std::uint8_t {
   mesh,              ///< the vertices of a mesh file (OFF, OBJ, PLY, STL)
   sphere,            ///< sphere-swept point: the origin, swept by the case's radius
   capsule,           ///< sphere-swept segment: (±1, 0, 0), swept by the case's radius
+  // Parts of the thin contact families (ContactType::crossing_segments and after).
+  segment,  ///< a segment of length 2
+  needle,   ///< a triangle of base 2 and height 2/aspect
+  rod,      ///< a k-gon prism of length 2 and radius 1/aspect
+  wedge,    ///< a triangular prism with a ridge of opening angle 2·atan(1/aspect)
+  plate,    ///< a box of extents 2 x 2 x 1/aspect
 };
 
 /// Contact configurations of the `contact` families, built from exactly representable
@@ -102,7 +108,24 @@ enum class ContactType : std::uint8_t {
   vertex_edge,
   vertex_vertex,
   parallel_edges,  ///< two edges at a small angle (not exactly representable)
+  // Thin configurations where GJK's sub-simplex solves are ill conditioned: A below the plane
+  // z = 0, B above, touching at the origin before the placement moves B along z; the angle θ
+  // (family `angle`) and the thinness (family `aspect`) are drawn log-uniformly.
+  crossing_segments,  ///< two segments of length 2 crossing at the origin at angle θ
+  needle_point,       ///< a needle triangle (aspect) and a point on it
+  needle_segment,     ///< a needle triangle and a segment crossing it at angle θ
+  thin_rods,          ///< two k-gon rods (k = 3…8, radius 1/aspect) touching, at angle θ
+  crossing_wedges,    ///< two sharp wedges (aspect) whose ridges cross, at angle θ or 90°·U
+  tilted_plates,      ///< two thin plates (aspect) face to face, B tilted by θ about an edge
 };
+
+/// The six contact types built from exactly representable coordinates (distance exactly 0
+/// before the placement): the ones `placement.mode = "touching"` and `contact = "any"` use.
+constexpr bool exact_contact(ContactType t) {
+  return t == ContactType::face_face || t == ContactType::edge_edge ||
+         t == ContactType::vertex_face || t == ContactType::edge_face ||
+         t == ContactType::vertex_edge || t == ContactType::vertex_vertex;
+}
 
 /// The case as generated: everything needed to describe and regenerate it.
 struct CaseRecord {
@@ -181,6 +204,11 @@ struct AlgorithmRecord {
   /// The same for the penetration depth (nearest double) where the rounded clouds intersect;
   /// NaN otherwise.
   double rounded_exact_depth = std::numeric_limits<double>::quiet_NaN();
+  /// The query's own proven bracket of the exact distance (GJK distance queries; NaN for the
+  /// others): lower_bound ≤ exact distance ≤ upper_bound, and `converged` means it is within
+  /// the query's tolerance.
+  double lower_bound = std::numeric_limits<double>::quiet_NaN();
+  double upper_bound = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Both clouds of a case, kept in the archive when any answer was wrong or not converged.

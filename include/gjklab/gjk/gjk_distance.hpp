@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "gjklab/geometry/support.hpp"
+#include "gjklab/gjk/bracket.hpp"
 #include "gjklab/gjk/directions.hpp"
 #include "gjklab/gjk/johnson.hpp"
 #include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/precise_subsimplex.hpp"
 #include "gjklab/gjk/recentred.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
@@ -109,6 +111,20 @@ struct JohnsonSubAlgorithm {
   }
 };
 
+/// The sub-simplex solve in double-word arithmetic (precise_subsimplex.hpp): what a query
+/// continues with when its own sub-algorithm's answer could not be proven (see
+/// gjk_distance_run_as_given). Not a registered algorithm of its own.
+struct PreciseSubAlgorithm {
+  template <class T>
+  SubsimplexSolutionT<T> solve(const std::array<Vec3T<T>, 4>& y, int count) const {
+    return precise_closest_point(y, count);
+  }
+  template <class T>
+  bool reduce(SimplexT<T>& simplex, ClosestOnSimplexT<T>& out) const {
+    return detail::keep_solution(solve(simplex.points(), simplex.size()), simplex, out);
+  }
+};
+
 namespace detail {
 
 /// Support point of A − B in direction d, with its two parts (and their vertex indices when
@@ -180,6 +196,22 @@ struct DistanceStop {
   bool contact;
 };
 
+/// The termination a query reports for a loop's stop, given whether its bracket is accepted:
+/// `converged` exactly when it is, for the stops that end on the answer's own merits (a
+/// converged claim, no progress, a degenerate simplex); an unproven converged claim becomes
+/// no_progress. The step limit and numerical failures are reported as they are.
+inline Termination judged_termination(Termination stop, bool accepted) {
+  switch (stop) {
+    case Termination::converged:
+    case Termination::no_progress:
+    case Termination::degenerate_simplex:
+      return accepted ? Termination::converged
+                      : (stop == Termination::converged ? Termination::no_progress : stop);
+    default:
+      return stop;
+  }
+}
+
 /// The state of one GJK distance query shared by the drivers (plain GJK and Nesterov's): the
 /// result being built (its simplex is the working simplex), the best point so far and the
 /// lower bound, with the steps every driver takes the same way. The result is the caller's
@@ -191,7 +223,14 @@ struct DistanceQueryState {
   DistanceResultT<T>& out;
   /// v and the weights of the simplex's points (witnesses are formed by finish()).
   ClosestOnSimplexT<T> best{};
+  /// The best proven lower bound of the distance so far (bracket.hpp), length units.
   T lower_bound = 0;
+  /// √3·(M_A + M_B), the scale of the pair's rounding (pair_magnitude), and the absolute term
+  /// of the bracket's bounds at that scale (bracket_rounding).
+  T magnitude = std::numeric_limits<T>::infinity();
+  T rounding = std::numeric_limits<T>::infinity();
+  /// Whether support planes prove lower bounds (both supports are full scans).
+  bool planes_prove = false;
 
   SimplexT<T>& simplex() { return out.simplex; }
 
@@ -214,14 +253,35 @@ struct DistanceQueryState {
     }
   }
 
-  /// Fills the result with the best point so far and the stop's termination.
+  /// Takes the pair's rounding scale (bracket.hpp) before the first support plane.
+  template <class A, class B>
+  void measure(const A& a, const B& b) {
+    magnitude = pair_magnitude<T>(a, b);
+    rounding = bracket_rounding(magnitude);
+    planes_prove = std::isfinite(rounding) && scans_support(a) && scans_support(b);
+  }
+
+  /// Raises the proven lower bound with the support plane d·x = d·w (dw = d·w, dd = ‖d‖²).
+  void note_lower_bound(T dw, T dd) {
+    if (planes_prove)
+      lower_bound = std::max(lower_bound, support_plane_lower_bound(dw, dd, rounding));
+  }
+
+  /// Fills the result with the best point so far, its proven bracket and the stop's
+  /// termination, which stays `converged` only where the bracket is accepted
+  /// (bracket_accepted); an unproven claim becomes no_progress.
   void finish(DistanceStop stop) {
     out.intersect = stop.contact;
     out.closest = best.v;
     combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
     out.distance = stop.contact ? T(0) : best.v.norm();
-    out.lower_bound = stop.contact ? T(0) : lower_bound;
-    out.termination = stop.termination;
+    DistanceBracketT<T> b;
+    b.lower = stop.contact ? T(0) : lower_bound;
+    b.upper = simplex_upper_bound(out.simplex, best.weights, rounding);
+    b = around(b, out.distance);
+    out.lower_bound = b.lower;
+    out.upper_bound = b.upper;
+    out.termination = judged_termination(stop.termination, bracket_accepted(options, b, magnitude));
   }
 
   /// Relative to the simplex, not squared: ‖v‖ ≤ relative_contact · max‖y_i‖ means v is
@@ -233,8 +293,16 @@ struct DistanceQueryState {
   /// The same test given max‖y_i‖² over the points v was computed from.
   bool in_contact(const Vec3T<T>& v, T max_norm_squared) const {
     const T tol = rounding_scaled<T>(options.relative_contact);
-    return v.squaredNorm() <= tol * tol * max_norm_squared;
+    const T vv = v.squaredNorm();
+    return vv <= tol * tol * max_norm_squared && vv <= provable_contact * provable_contact;
   }
+
+  /// ‖v‖ up to which contact may be claimed: unbounded for the query's own sub-algorithm (its
+  /// option relative_contact decides); for the double-word continuation, the norm whose upper
+  /// bound the bracket still accepts (bracket_resolution − bracket_rounding), so that a claim it
+  /// makes is one it can prove: a pair 1.5e-12 deep whose triangle passes 4e-13 from the origin
+  /// goes on to the tetrahedron that holds the origin instead of stopping on the triangle.
+  T provable_contact = std::numeric_limits<T>::infinity();
 };
 
 /// Largest ‖y_i‖² over the points of y in `subset` (bit i ↔ y[i]).
@@ -351,12 +419,6 @@ bool may_stall(T vv, T vw, T ww, T new_vv, bool keeps_new_point, int stalls) {
          new_vv <= vv * (1 + rounding_scaled<T>(1e-12)) && gap_certified(vv, vw, ww);
 }
 
-/// Raises the lower bound of the distance to v·w/‖v‖ (for v·w > 0, ‖v‖² = vv).
-template <class T>
-void lower_bound_update(T& lower_bound, T vw, T vv) {
-  lower_bound = std::max(lower_bound, vw / std::sqrt(vv));
-}
-
 /// c_A − c_B for shapes that have an interior point (vertex_mean(), as Polytope), written to
 /// `out`; false, leaving `out` alone, for other shapes or when the difference is zero or not
 /// finite (then the query falls back to its fixed first direction).
@@ -417,7 +479,7 @@ Vec3T<T> start_simplex(const Sub& sub, const A& a, const B& b, const GjkDistance
   const Vec3T<T> search =
       from_centre ? Vec3T<T>(-centre) : Vec3T<T>(options.initial_direction.cast<T>());
   const SimplexVertexT<T> first = minkowski_support(a, b, search);
-  support_calls = 1;
+  ++support_calls;
   simplex.clear();
   simplex.push(first);
   best = {first.w, first.a, first.b, {1, 0, 0, 0}};
@@ -538,11 +600,13 @@ Vec3T<T> search_direction(Directions& directions, int iteration, const Vec3T<T>&
 }
 
 /// What the support point s found in direction −d says: the plane d·x = d·s supports A − B, so
-/// for d·s > 0 the distance is at least d·s/‖d‖, and d·s beyond its rounding certifies that the
-/// shapes do not intersect (dw = d·s, dd = ‖d‖², ww = ‖s‖²).
-template <class T>
-void note_support_plane(T& lower_bound, bool& separation_proven, T dw, T dd, T ww) {
-  if (dw > 0) lower_bound_update(lower_bound, dw, dd);
+/// for d·s > 0 the distance is at least about d·s/‖d‖ (the proven bound: bracket.hpp), and
+/// d·s beyond its rounding certifies that the shapes do not intersect (dw = d·s, dd = ‖d‖²,
+/// ww = ‖s‖²).
+template <class T, class Observer>
+void note_support_plane(DistanceQueryState<T, Observer>& q, bool& separation_proven, T dw, T dd,
+                        T ww) {
+  q.note_lower_bound(dw, dd);
   if (!separation_proven && separation_certified(dw, dd, ww)) separation_proven = true;
 }
 
@@ -576,7 +640,8 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
     directions.start(n0 > 0 ? Vec3T<T>(d0 / n0 * simplex[0].w.norm()) : best.v, simplex[0].w);
   }
 
-  for (out.iterations = 1; out.iterations <= options.max_iterations; ++out.iterations) {
+  // A continuation (gjk_distance_run_as_given) counts on from the iterations already made.
+  for (++out.iterations; out.iterations <= options.max_iterations; ++out.iterations) {
     const Vec3T<T> v = best.v;
     const T vv = v.squaredNorm();
     const Vec3T<T> d = search_direction(directions, out.iterations, v, accelerated);
@@ -593,9 +658,9 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
     const T vw = v.dot(next.w);
     const T ww = next.w.squaredNorm();
     if (accelerated)
-      note_support_plane(q.lower_bound, separation_proven, d.dot(next.w), d.squaredNorm(), ww);
+      note_support_plane(q, separation_proven, d.dot(next.w), d.squaredNorm(), ww);
     else
-      note_support_plane(q.lower_bound, separation_proven, vw, vv, ww);
+      note_support_plane(q, separation_proven, vw, vv, ww);
 
     // The duality gap at s: the stopping test when plain, the restart test when accelerated.
     const bool gap_met = gap_converged(options, vv, vw);
@@ -627,7 +692,42 @@ DistanceStop gjk_distance_loop(const A& a, const B& b, std::span<const SimplexVe
   return {Termination::step_limit, false};
 }
 
+/// For shapes whose support is not a full scan (hill climbing), the support plane that a full
+/// scan of both shapes in the final direction −v proves (the loop's planes prove nothing
+/// there, bracket.hpp); one scan per shape, once per query.
+template <SupportMap A, SupportMap B, class T, class Observer>
+void scan_lower_bound(const A& a, const B& b, DistanceQueryState<T, Observer>& q) {
+  if constexpr (requires {
+                  a.scan_support_index(q.best.v);
+                  b.scan_support_index(q.best.v);
+                }) {
+    if (q.planes_prove || !std::isfinite(q.rounding) || is_zero(q.best.v)) return;
+    const Vec3T<T>& v = q.best.v;
+    const Vec3T<T> w =
+        a.vertices()[a.scan_support_index(Vec3T<T>(-v))] - b.vertices()[b.scan_support_index(v)];
+    q.planes_prove = true;
+    q.note_lower_bound(v.dot(w), v.squaredNorm());
+  }
+}
+
+/// Whether a loop's stop leaves a continuation something to try: its answer is not proven
+/// (the termination finish() judged is not converged), it ended on its own merits rather than
+/// on a NaN or the step limit, and iterations are left.
+template <class T>
+bool worth_continuing(const DistanceResultT<T>& r, const GjkDistanceOptions& options) {
+  return r.termination != Termination::converged &&
+         r.termination != Termination::numerical_failure &&
+         r.termination != Termination::step_limit && r.iterations < options.max_iterations;
+}
+
 /// Runs the loop on the shapes as given and builds the result in the returned object itself.
+///
+/// Where the sub-algorithm's answer cannot be proven (its bracket is too wide, bracket.hpp), the
+/// query goes on from its final simplex with the sub-simplex solved in double-word arithmetic
+/// (PreciseSubAlgorithm) and plain directions, within the same iteration budget, and keeps the
+/// answer with the narrower bracket: the stop of a needle triangle or of nearly parallel
+/// segments, where every sub-algorithm's decisions in double are rounding noise, is then
+/// decided at 106 bits. The lower bound carries over (every support plane is a proof).
 template <SubAlgorithm Sub, SupportMap A, SupportMap B, class Observer, class Directions,
           class T = shape_scalar_t<A>>
 DistanceResultT<T> gjk_distance_run_as_given(const A& a, const B& b,
@@ -636,7 +736,34 @@ DistanceResultT<T> gjk_distance_run_as_given(const A& a, const B& b,
                                              Observer& observer, Directions directions) {
   DistanceResultT<T> out;
   DistanceQueryState<T, Observer> q{options, observer, out};
-  q.finish(gjk_distance_loop<Sub>(a, b, warm, q, directions));
+  q.measure(a, b);
+  const DistanceStop stop = gjk_distance_loop<Sub>(a, b, warm, q, directions);
+  scan_lower_bound(a, b, q);
+  q.finish(stop);
+  if (!worth_continuing(out, options)) return out;
+
+  DistanceResultT<T> again;
+  again.iterations = out.iterations;
+  again.support_calls = out.support_calls;
+  DistanceQueryState<T, Observer> p{options, observer, again};
+  p.measure(a, b);
+  p.lower_bound = q.lower_bound;
+  p.provable_contact = bracket_resolution(p.magnitude) - p.rounding;
+  const SimplexT<T> start = out.simplex;
+  PlainDirections plain;
+  const DistanceStop precise_stop =
+      gjk_distance_loop<PreciseSubAlgorithm>(a, b, start.vertices(), p, plain);
+  scan_lower_bound(a, b, p);
+  p.finish(precise_stop);
+  const bool better = again.termination == Termination::converged ||
+                      again.upper_bound - again.lower_bound < out.upper_bound - out.lower_bound;
+  if (better) return again;
+  // The first answer stands, judged again with the lower bound the continuation proved, at the
+  // cost of both.
+  q.lower_bound = std::max(q.lower_bound, p.lower_bound);
+  q.finish(stop);
+  out.iterations = again.iterations;
+  out.support_calls = again.support_calls;
   return out;
 }
 

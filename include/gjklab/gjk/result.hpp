@@ -1,6 +1,7 @@
 // Result structs shared by all algorithms: one query, one input, one result.
 #pragma once
 
+#include <limits>
 #include <type_traits>
 
 #include "gjklab/geometry/types.hpp"
@@ -25,9 +26,13 @@ struct DistanceResultT {
   Vec3T<T> witness_a = Vec3T<T>::Zero();  ///< point of A closest to B (world frame)
   Vec3T<T> witness_b = Vec3T<T>::Zero();  ///< point of B closest to A; witness_a − witness_b = v
   Vec3T<T> closest = Vec3T<T>::Zero();    ///< v: the point of A − B closest to the origin
-  /// Best lower bound of the distance seen, max(0, v·w/‖v‖) over the iterations; the true
-  /// distance lies in [lower_bound, distance] up to rounding.
+  /// A proven bracket of the exact distance (length units): lower_bound ≤ exact distance ≤
+  /// upper_bound whatever the query's rounding, with `distance` inside it (gjk/bracket.hpp).
+  /// lower_bound is the best support plane's, upper_bound the kept simplex point's; an
+  /// intersecting answer has lower_bound 0. `converged` means this bracket is within the
+  /// options' tolerance; upper_bound is infinite where nothing could be proven.
   T lower_bound = 0;
+  T upper_bound = std::numeric_limits<T>::infinity();
   /// The final simplex (for penetration-depth algorithms that start from it, and for traces).
   SimplexT<T> simplex;
   int iterations = 0;
@@ -49,6 +54,7 @@ DistanceResult to_double(const DistanceResultT<T>& r) {
     out.witness_b = r.witness_b.template cast<double>();
     out.closest = r.closest.template cast<double>();
     out.lower_bound = static_cast<double>(r.lower_bound);
+    out.upper_bound = static_cast<double>(r.upper_bound);
     out.simplex = to_double(r.simplex);
     out.iterations = r.iterations;
     out.support_calls = r.support_calls;

@@ -44,7 +44,7 @@ inline Vec3 core_axis(const Vec3& witness_a, const Vec3& witness_b) {
 /// the core witnesses towards each other by the radii. Cores at most r_A + r_B apart (touching
 /// counts as intersecting, as everywhere): intersect, distance 0, and the witnesses are the
 /// moved points, which then lie inside the other shape (along the core axis). Intersecting
-/// cores: unchanged. The lower bound is shifted like the distance (and clamped at 0);
+/// cores: unchanged. The bracket is shifted like the distance (and clamped at 0);
 /// iterations, support calls, the simplex and the termination stay the core query's.
 inline DistanceResult swept_distance(DistanceResult core, const SweptRadii& radii) {
   if (core.intersect) return core;
@@ -52,6 +52,7 @@ inline DistanceResult swept_distance(DistanceResult core, const SweptRadii& radi
   core.witness_a += radii.a * axis;
   core.witness_b -= radii.b * axis;
   core.lower_bound = std::max(0.0, core.lower_bound - radii.sum());
+  core.upper_bound = std::max(0.0, core.upper_bound - radii.sum());
   if (core.distance <= radii.sum()) {
     core.intersect = true;
     core.distance = 0;

@@ -1,13 +1,14 @@
-// Internal to src/exact/: double-word ("double-double") arithmetic with a running bound on the
-// absolute error, for floating-point filters that need about 100 bits.
+// Double-word ("double-double") arithmetic with a running bound on the absolute error, for
+// computations that need about 100 bits: the exact layer's floating-point filters, and the GJK
+// sub-simplex solve on ill-conditioned simplices (gjk/precise_subsimplex.hpp).
 //
 // A value is hi + lo with |lo| ≤ ulp(hi)/2, and err bounds |exact − (hi + lo)|, where "exact" is
 // the real number the same expression gives on the input doubles. The sums and products are
 // the classical error-free transformations (TwoSum, and the exact product a·b = p + fma(a, b, −p))
 // followed by one renormalisation. Every operation is always_inline so that a caller compiled
-// for a processor with fused multiply-add gets the instruction (see filtered_tetrahedron.cpp's
-// dispatch); elsewhere fma is the C library's, which is exact too. With u = 2^-53 the rounding
-// they add is at most, derived for these exact sequences of operations:
+// for a processor with fused multiply-add gets the instruction (see the exact layer's
+// filtered_tetrahedron.cpp); elsewhere fma is the C library's, which is exact too. With u = 2^-53
+// the rounding they add is at most, derived for these exact sequences of operations:
 //   x + y: 3.1·u²·(|x.hi| + |y.hi|)   (the low parts' sum and its addition to TwoSum's error)
 //   x · y: 8·u²·(1 + 3u)·|x.hi·y.hi|  (three products of low parts and two sums, each ≤ u)
 // and the bounds below use 4u² and 10u². Each also adds kUnderflowSlack, an absolute 2^-1000
@@ -18,7 +19,7 @@
 
 #include <cmath>
 
-namespace gjklab::exact::detail {
+namespace gjklab {
 
 struct DoubleWord {
   double hi = 0, lo = 0;
@@ -106,4 +107,4 @@ constexpr double kBoundSafety = 1 + 0x1p-40;
   return positive(-x);
 }
 
-}  // namespace gjklab::exact::detail
+}  // namespace gjklab
