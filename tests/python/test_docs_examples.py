@@ -22,7 +22,8 @@ reads the reference archives but writes nothing into the source tree). A command
 most COMMAND_SECONDS. The examples are kept small: all of them together take well under a
 minute on 2 cores.
 
-The test also checks that mkdocs.yml's nav lists every page of docs/.
+The test also checks that mkdocs.yml's nav lists every page of docs/, and that CITATION.cff
+names the project version of CMakeLists.txt.
 """
 
 import os
@@ -193,3 +194,10 @@ def test_python_example(block, tmp_path):
     output = done.stdout + done.stderr
     assert done.returncode == 0, f"{block.name}: the example failed:\n{output[-3000:]}"
     check_expectations(block, output)
+
+
+def test_citation_names_the_project_version():
+    """CITATION.cff's version is CMakeLists.txt's project version."""
+    project = re.search(r"project\(gjklab VERSION ([\d.]+)", (SOURCE_DIR / "CMakeLists.txt").read_text())
+    citation = re.search(r"^version: ([\d.]+)\s*$", (SOURCE_DIR / "CITATION.cff").read_text(), re.M)
+    assert project and citation and project.group(1) == citation.group(1)
