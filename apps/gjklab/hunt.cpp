@@ -83,8 +83,9 @@ CLI::App* add_hunt_command(CLI::App& app, HuntArgs& args) {
   cmd->add_option("--queries", args.queries, "the search's budget of judged queries")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   cmd->add_option("--objective", args.objective,
-                  "wrong_boolean (default), error, iterations or not_converged")
-      ->check(CLI::IsMember({"wrong_boolean", "error", "iterations", "not_converged"}));
+                  "wrong_boolean (default), error, iterations, not_converged or "
+                  "false_convergence")
+      ->check(CLI::IsMember(experiment::hunt_objective_names()));
   cmd->add_option("--seed", args.seed, "seed of the search (default 1)");
   cmd->add_option("--restart-queries", args.restart_queries,
                   "the most queries one restart's local search spends (default 6)")

@@ -350,6 +350,13 @@ std::optional<HuntObjective> hunt_objective_from_string(std::string_view name) {
   return value_named(kObjectiveNames, name);
 }
 
+std::vector<std::string> hunt_objective_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : kObjectiveNames)
+    names.emplace_back(entry.name);
+  return names;
+}
+
 HuntReport hunt(const ExperimentConfig& config, const HuntOptions& options) {
   const Judge judge(config, options);
   HuntReport report;

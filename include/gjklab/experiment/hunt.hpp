@@ -45,6 +45,8 @@ enum class HuntObjective : std::uint8_t {
 
 std::string_view to_string(HuntObjective o);
 std::optional<HuntObjective> hunt_objective_from_string(std::string_view name);
+/// Every objective's name, in declaration order (for the command line's choices).
+std::vector<std::string> hunt_objective_names();
 
 struct HuntOptions {
   std::string algorithm;          ///< registry name, with the experiment's options when it lists it
