@@ -11,8 +11,13 @@
 // shapes reach is then proved separated by a single support evaluation, and an enclosing
 // simplex needs three support points instead of four.
 //
-// Rounding. When the origin lies on a segment of the simplex within rounding, the walk reports
-// contact (touching, within a few ε of the segment's length, counts as intersecting).
+// Rounding. A claim the walk makes is `converged` only where it is proven: contact on a
+// tetrahedron that holds the origin beyond the rounding of its face tests, separation by a
+// support plane below the origin beyond the rounding of its support and dot product. Anything
+// else (the origin on a segment or a face within rounding, a needle's flat tetrahedron, a
+// plane through the origin within rounding) is decided by the GJK distance walk, whose answer
+// carries a proven bracket (gjk_distance.hpp): the walk said "touching" for a point 3e-10 from
+// a needle triangle of aspect 1e7.
 //
 // Cycles. Triple-product directions do not make the walk monotone, and it can come back to a
 // state (direction and simplex) it was in: quickstart case 7786, a separated pair, cycles
@@ -188,6 +193,44 @@ BooleanResult decide_by_distance(const A& a, const B& b, const GjkBooleanOptions
 }
 
 /// The boolean walk on the shapes as given (gjk_intersect below re-centres first).
+/// True if the origin is certainly inside the tetrahedron y[0..3]: for every face, strictly on
+/// the side of the opposite vertex by more than the rounding of the signed distances (the
+/// bound of origin_outside_tetrahedron in gjk_distance.hpp). A walk that ends on a tetrahedron
+/// the triple products say holds the origin has proven contact only then; a flat one (a needle
+/// triangle lifted by rounding) leaves the decision to the distance walk.
+template <class T>
+bool origin_inside_tetrahedron(const Vec3T<T> (&y)[4]) {
+  T m = 0;
+  for (const Vec3T<T>& p : y)
+    m = std::max(m, p.norm());
+  for (int k = 0; k < 4; ++k) {
+    const Vec3T<T>& y0 = y[(k + 1) % 4];
+    const Vec3T<T> e1 = y[(k + 2) % 4] - y0, e2 = y[(k + 3) % 4] - y0;
+    const Vec3T<T> n = e1.cross(e2);
+    const T bound = 16 * dot_roundoff<T> * m * (n.norm() + e1.norm() * e2.norm());
+    T s_origin = -n.dot(y0), s_vertex = n.dot(y[k] - y0);
+    if (s_vertex < 0) {
+      s_origin = -s_origin;
+      s_vertex = -s_vertex;
+    }
+    if (!(s_origin > bound && s_origin < s_vertex - bound)) return false;
+  }
+  return true;
+}
+
+/// Whether the walk's claim stands as a proof: contact on a tetrahedron that certainly holds
+/// the origin (other contacts, on a segment or a zero direction, are rounding's call), or
+/// separation by a support plane d·x = d·w below the origin by more than the rounding of its
+/// support and dot product (bracket_rounding(μ)·‖d‖, bracket.hpp). Shapes without a magnitude
+/// (sphere-swept support maps) prove nothing this way, and their claims stand as before.
+template <class T>
+bool boolean_claim_proven(bool contact, const BooleanSimplexT<T>& simplex, T dw, const Vec3T<T>& d,
+                          T magnitude) {
+  if (!std::isfinite(magnitude)) return true;
+  if (contact) return simplex.size == 4 && origin_inside_tetrahedron(simplex.points);
+  return dw < -bracket_rounding(magnitude) * d.norm();
+}
+
 template <SupportMap A, SupportMap B, class Observer>
 BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOptions& options,
                                      Observer& observer) {
@@ -210,6 +253,13 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     return out;
   };
   detail::CycleDetector<T> cycles;
+  const T magnitude = pair_magnitude<T>(a, b);
+  // A claim the walk cannot prove is decided by the distance walk, whose answer is bracketed.
+  auto decide = [&](bool contact, T dw, const Point& d) {
+    if (boolean_claim_proven(contact, simplex, dw, d, magnitude))
+      return finish(contact, Termination::converged);
+    return decide_by_distance(a, b, options, out, observer);
+  };
   if (from_centre && options.start == GjkBooleanStart::centre_point) {
     // c is a point of the hull of A − B: a simplex vertex like any support point, but free.
     simplex.points[0] = centre;
@@ -224,10 +274,10 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     if (!is_finite(first.w)) return finish(false, Termination::numerical_failure);
     // Only the centre direction points towards the origin, so only there can the first point
     // prove separation (with fixed_direction the test is skipped, keeping its counts).
-    if (from_centre && first.w.dot(first_direction) < 0) {
+    if (const T dw = first.w.dot(first_direction); from_centre && dw < 0) {
       out.iterations = 1;  // the one evaluation was the whole search
       trace(first_direction, first, GjkStep::separated);
-      return finish(false, Termination::converged);
+      return decide(false, dw, first_direction);
     }
     simplex.points[0] = first.w;
     simplex.size = 1;
@@ -238,7 +288,7 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
     // A zero direction means the origin lies on the current simplex: the shapes touch.
     if (is_zero(direction)) {
       trace(direction, {}, GjkStep::contact);
-      return finish(true, Termination::converged);
+      return decide(true, T(0), direction);
     }
     if (!is_finite(direction)) {
       trace(direction, {}, GjkStep::non_finite);
@@ -258,14 +308,14 @@ BooleanResult gjk_intersect_as_given(const A& a, const B& b, const GjkBooleanOpt
       trace(d, w, GjkStep::non_finite);
       return finish(false, Termination::numerical_failure);
     }
-    if (w.w.dot(d) < 0) {
+    if (const T dw = w.w.dot(d); dw < 0) {
       trace(d, w, GjkStep::separated);
-      return finish(false, Termination::converged);
+      return decide(false, dw, d);
     }
     detail::push_front(simplex, w.w);
     if (detail::boolean_gjk_step(simplex, direction)) {
       trace(d, w, GjkStep::contact);
-      return finish(true, Termination::converged);
+      return decide(true, T(0), d);
     }
     trace(d, w,
           out.iterations == options.max_iterations ? GjkStep::step_limit : GjkStep::continued);

@@ -270,14 +270,23 @@ struct DistanceQueryState {
   /// Fills the result with the best point so far, its proven bracket and the stop's
   /// termination, which stays `converged` only where the bracket is accepted
   /// (bracket_accepted); an unproven claim becomes no_progress.
+  ///
+  /// A separated stop whose distance nothing bounds away from 0 (no support plane proved a
+  /// positive lower bound) and whose upper bound is within the pair's resolution is reported
+  /// as contact, as the contact test does for the sub-algorithm's v: its boolean is undecided
+  /// at the precision of the coordinates, and "apart" would claim what no plane showed (rods
+  /// 1e-9 deep said "apart, 4e-13").
   void finish(DistanceStop stop) {
-    out.intersect = stop.contact;
+    const T upper = simplex_upper_bound(out.simplex, best.weights, rounding);
+    const bool contact =
+        stop.contact || (!(lower_bound > 0) && upper <= bracket_resolution(magnitude));
+    out.intersect = contact;
     out.closest = best.v;
     combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
-    out.distance = stop.contact ? T(0) : best.v.norm();
+    out.distance = contact ? T(0) : best.v.norm();
     DistanceBracketT<T> b;
-    b.lower = stop.contact ? T(0) : lower_bound;
-    b.upper = simplex_upper_bound(out.simplex, best.weights, rounding);
+    b.lower = contact ? T(0) : lower_bound;
+    b.upper = upper;
     b = around(b, out.distance);
     out.lower_bound = b.lower;
     out.upper_bound = b.upper;
