@@ -208,15 +208,11 @@ TEST_CASE("distance bracket: bounds from a plane and from the simplex", "[unit][
   const Vec3 d(-1, 0, 0), w = a.vertices()[0] - b.vertices()[0];
   CHECK(support_plane_lower_bound(d.dot(w), d.squaredNorm(), e) == Approx(3 - e));
   CHECK(support_plane_lower_bound(-1.0, 1.0, e) == 0);  // a plane behind the origin
-  Simplex s;
-  SimplexVertex v;
-  v.a = a.vertices()[0];
-  v.b = b.vertices()[0];
-  v.w = w;
-  s.push(v);
-  CHECK(simplex_upper_bound(s, {1, 0, 0, 0}, e) == Approx(3 + e));
-  CHECK(std::isinf(simplex_upper_bound(s, {-1, 0, 0, 0}, e)));  // weights naming no point
-  CHECK(std::isinf(simplex_upper_bound(s, {0, 0, 0, 0}, e)));
+  const Vec3 wa = a.vertices()[0], wb = b.vertices()[0];
+  CHECK(simplex_upper_bound<double>({1, 0, 0, 0}, 1, wa, wb, e) == Approx(3 + e));
+  // Weights naming no point: negative, or summing to 0.
+  CHECK(std::isinf(simplex_upper_bound<double>({-1, 0, 0, 0}, 1, -wa, -wb, e)));
+  CHECK(std::isinf(simplex_upper_bound<double>({0, 0, 0, 0}, 1, 0 * wa, 0 * wb, e)));
 }
 
 TEST_CASE("precise sub-simplex: a needle triangle's plane point, where double loses it",

@@ -111,17 +111,16 @@ T support_plane_lower_bound(T dw, T dd, T rounding) {
   return bound > 0 ? bound : T(0);
 }
 
-/// The upper bound that the kept simplex points and their weights prove (`weights` in the
-/// simplex's order); infinity when the weights do not name a point (negative, zero sum, not
-/// finite).
+/// The upper bound that the first `count` weights prove, given the sums Σ λ_k a_k = wa and
+/// Σ λ_k b_k = wb formed in floating point from zero in the simplex's order (as
+/// combine_witnesses forms the witnesses, which the query has anyway); infinity when the
+/// weights do not name a point (negative, zero sum, not finite).
 template <class T>
-T simplex_upper_bound(const SimplexT<T>& simplex, const std::array<T, 4>& weights, T rounding) {
-  Vec3T<T> wa = Vec3T<T>::Zero(), wb = Vec3T<T>::Zero();
+T simplex_upper_bound(const std::array<T, 4>& weights, int count, const Vec3T<T>& wa,
+                      const Vec3T<T>& wb, T rounding) {
   T total = 0;
-  for (int k = 0; k < simplex.size(); ++k) {
+  for (int k = 0; k < count; ++k) {
     if (!(weights[k] >= 0)) return std::numeric_limits<T>::infinity();
-    wa += weights[k] * simplex[k].a;
-    wb += weights[k] * simplex[k].b;
     total += weights[k];
   }
   if (!(total > 0)) return std::numeric_limits<T>::infinity();

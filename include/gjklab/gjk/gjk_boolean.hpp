@@ -195,25 +195,31 @@ BooleanResult decide_by_distance(const A& a, const B& b, const GjkBooleanOptions
 /// The boolean walk on the shapes as given (gjk_intersect below re-centres first).
 /// True if the origin is certainly inside the tetrahedron y[0..3]: for every face, strictly on
 /// the side of the opposite vertex by more than the rounding of the signed distances (the
-/// bound of origin_outside_tetrahedron in gjk_distance.hpp). A walk that ends on a tetrahedron
-/// the triple products say holds the origin has proven contact only then; a flat one (a needle
-/// triangle lifted by rounding) leaves the decision to the distance walk.
+/// bound of origin_outside_tetrahedron in gjk_distance.hpp, with ‖n‖ ≤ ‖e1‖‖e2‖, compared
+/// squared: no square root on the path of every intersecting query). A walk that ends on a
+/// tetrahedron the triple products say holds the origin has proven contact only then; a flat
+/// one (a needle triangle lifted by rounding) leaves the decision to the distance walk.
 template <class T>
 bool origin_inside_tetrahedron(const Vec3T<T> (&y)[4]) {
-  T m = 0;
+  T mm = 0;  // max‖y_i‖²
   for (const Vec3T<T>& p : y)
-    m = std::max(m, p.norm());
+    mm = std::max(mm, p.squaredNorm());
+  const T c = 32 * dot_roundoff<T>;
   for (int k = 0; k < 4; ++k) {
     const Vec3T<T>& y0 = y[(k + 1) % 4];
     const Vec3T<T> e1 = y[(k + 2) % 4] - y0, e2 = y[(k + 3) % 4] - y0;
     const Vec3T<T> n = e1.cross(e2);
-    const T bound = 16 * dot_roundoff<T> * m * (n.norm() + e1.norm() * e2.norm());
+    // bound² = (32·kDotRoundoff)²·max‖y‖²·‖e1‖²·‖e2‖² ≥ the bound above, squared.
+    const T bound_squared = c * c * mm * e1.squaredNorm() * e2.squaredNorm();
     T s_origin = -n.dot(y0), s_vertex = n.dot(y[k] - y0);
     if (s_vertex < 0) {
       s_origin = -s_origin;
       s_vertex = -s_vertex;
     }
-    if (!(s_origin > bound && s_origin < s_vertex - bound)) return false;
+    const T room = s_vertex - s_origin;  // the origin's distance from the opposite vertex's plane
+    if (!(s_origin > 0 && room > 0 && s_origin * s_origin > bound_squared &&
+          room * room > bound_squared))
+      return false;
   }
   return true;
 }
@@ -228,7 +234,8 @@ bool boolean_claim_proven(bool contact, const BooleanSimplexT<T>& simplex, T dw,
                           T magnitude) {
   if (!std::isfinite(magnitude)) return true;
   if (contact) return simplex.size == 4 && origin_inside_tetrahedron(simplex.points);
-  return dw < -bracket_rounding(magnitude) * d.norm();
+  const T e = bracket_rounding(magnitude);  // dw < −E·‖d‖, compared squared
+  return dw < 0 && dw * dw > e * e * d.squaredNorm();
 }
 
 template <SupportMap A, SupportMap B, class Observer>

@@ -277,12 +277,13 @@ struct DistanceQueryState {
   /// at the precision of the coordinates, and "apart" would claim what no plane showed (rods
   /// 1e-9 deep said "apart, 4e-13").
   void finish(DistanceStop stop) {
-    const T upper = simplex_upper_bound(out.simplex, best.weights, rounding);
+    combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
+    const T upper = simplex_upper_bound(best.weights, out.simplex.size(), out.witness_a,
+                                        out.witness_b, rounding);
     const bool contact =
         stop.contact || (!(lower_bound > 0) && upper <= bracket_resolution(magnitude));
     out.intersect = contact;
     out.closest = best.v;
-    combine_witnesses(out.simplex, best.weights, out.witness_a, out.witness_b);
     out.distance = contact ? T(0) : best.v.norm();
     DistanceBracketT<T> b;
     b.lower = contact ? T(0) : lower_bound;
