@@ -1,6 +1,6 @@
 // Scene files (TOML) for `gjklab simulate`: the world's settings, static containers and body
 // groups with their placement. Errors are experiment::ConfigError "FILE:LINE: key 'K': ..."
-// like the experiment files'. The format is documented in README.md ("Scenes").
+// like the experiment files'. The format is documented in docs/scenes.md.
 #pragma once
 
 #include <cstdint>

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Schema of the scene archive (documented in README.md, "Scenes"); bumped on any change.
+/// Schema of the scene archive (documented in docs/scenes.md); bumped on any change.
 constexpr int kSceneSchemaVersion = 3;  // 2: frames/dbvt_ns, audit/; 3: queries/, shapes/
 
 struct SimulationError : std::runtime_error {

@@ -146,3 +146,21 @@ TEST_CASE("gjklab hunt --archive runs the found cases into an archive, every one
   CHECK(r.status == 2);
   CHECK(r.err.find("same file") != std::string::npos);
 }
+
+TEST_CASE("hunt's false_convergence: a peer's wrong converged answers, none of gjk-johnson's",
+          "[unit][hunt]") {
+  // Without a bracket (libccd-gjk reports none), a converged answer that is wrong counts; with
+  // one (gjk-johnson), only a converged answer whose bracket misses the exact distance does.
+  const ExperimentConfig config = parse_experiment(kExperiment, "hunt.toml");
+  HuntOptions options;
+  options.objective = HuntObjective::false_convergence;
+  options.queries = 1500;
+  options.seed = 1;
+  options.algorithm = "libccd-gjk";
+  CHECK(hunt(config, options).found.size() >= 2);
+  options.algorithm = "gjk-johnson";
+  const HuntReport johnson = hunt(config, options);
+  CHECK(johnson.queries == 1500);
+  CHECK(johnson.found.empty());
+  CHECK(hunt_objective_from_string("false_convergence") == HuntObjective::false_convergence);
+}
