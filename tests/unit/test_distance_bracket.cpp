@@ -264,3 +264,48 @@ TEST_CASE("precise sub-simplex: nearly parallel segments' closest point on the l
   CHECK(std::abs(s.closest.dot(e)) <= 1e-30);  // perpendicular to the segment
   CHECK(s.closest.y() == Approx(1e-11).epsilon(1e-12));
 }
+
+namespace {
+
+/// A polytope whose support, like a hill climb stopped on a plateau of rounded values, never
+/// reaches one vertex (the last): a local maximum that is not the global one. It reports
+/// uses_hill_climbing() and offers the full scan, as Polytope does.
+struct StuckClimber {
+  const Polytope* shape;
+  std::span<const Vec3> vertices() const { return shape->vertices(); }
+  std::size_t support_index(const Vec3& d) const {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i + 1 < shape->size(); ++i)
+      if (shape->vertices()[i].dot(d) > shape->vertices()[best].dot(d)) best = i;
+    return best;
+  }
+  Vec3 support(const Vec3& d) const { return shape->vertices()[support_index(d)]; }
+  std::size_t scan_support_index(const Vec3& d) const { return shape->scan_support_index(d); }
+  bool uses_hill_climbing() const { return true; }
+  double max_magnitude() const { return shape->max_magnitude(); }
+};
+
+}  // namespace
+
+TEST_CASE("distance bracket: a support that is not a full scan proves no plane",
+          "[unit][bracket]") {
+  // A's vertex nearest B is one its support never returns: the loop converges on the rest of
+  // A, 0.5 farther, and its support planes would "prove" a lower bound above the distance. The
+  // lower bound must come from the full scan instead, which finds the vertex: the bracket holds
+  // the exact distance, and the answer, 0.5 off, is not `converged`.
+  const std::vector<Vec3> a_points{Vec3(-1, -1, -1), Vec3(1, -1, -1), Vec3(-1, 1, -1),
+                                   Vec3(1, 1, -1),   Vec3(-1, -1, 1), Vec3(1, -1, 1),
+                                   Vec3(-1, 1, 1),   Vec3(0, 0, 1.5)};
+  const std::vector<Vec3> b_points{Vec3(-1, -1, 3), Vec3(1, -1, 3), Vec3(-1, 1, 3), Vec3(1, 1, 3)};
+  const Polytope a(a_points), b(b_points);
+  const StuckClimber stuck{&a};
+  const auto exact = exact::solve(a_points, b_points);
+  REQUIRE(exact.distance == 1.5);
+  const DistanceResult r = gjk_distance(stuck, b);
+  INFO(r.distance << " in [" << r.lower_bound << ", " << r.upper_bound << "], "
+                  << to_string(r.termination));
+  CHECK(r.distance == Approx(2.0));
+  CHECK(r.lower_bound <= exact.distance);
+  CHECK(exact.distance <= r.upper_bound);
+  CHECK(r.termination != Termination::converged);
+}
