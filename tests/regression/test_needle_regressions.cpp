@@ -10,6 +10,7 @@
 #include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/cloud_io.hpp"
 
 using namespace gjklab;
 
@@ -56,4 +57,18 @@ TEST_CASE("thin rods of radius 3e-6, 7e-11 apart at an angle of 1e-9", "[regress
 TEST_CASE("a point 3e-12 above a needle triangle of aspect 1e7", "[regression]") {
   check_own_algorithms(
       testing::regression_case("needle_triangle_aspect_1e7_point_3e-12_above.jsonl"));
+}
+
+TEST_CASE("wedges whose edges cross 1e-8 deep (hunted against gjk-johnson)", "[regression]") {
+  // The five cases `gjklab hunt --algorithm gjk-johnson` found before the proven stopping test:
+  // Johnson's cofactors on the thin tetrahedron put its closest point farther than the
+  // previous one, and the query stopped on no_progress at "apart, 6e-10 … 5.1e-9".
+  const auto cases =
+      experiment::read_cases_file(std::string(GJKLAB_REGRESSION_DATA_DIR) +
+                                  "/hunted_wedges_crossing_1e-8_deep_johnson_no_progress.jsonl");
+  REQUIRE(cases.size() == 5);
+  for (const auto& c : cases) {
+    REQUIRE(std::holds_alternative<experiment::PointCase>(c));
+    check_own_algorithms(std::get<experiment::PointCase>(c));
+  }
 }
