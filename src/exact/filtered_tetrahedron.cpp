@@ -24,8 +24,8 @@
 #include <limits>
 #include <optional>
 
-#include "gjklab/geometry/double_word.hpp"
 #include "filtered_distance.hpp"
+#include "gjklab/geometry/double_word.hpp"
 #include "wide_rounding.hpp"
 
 namespace gjklab::exact::detail {

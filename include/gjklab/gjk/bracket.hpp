@@ -136,6 +136,24 @@ DistanceBracketT<T> around(DistanceBracketT<T> b, T reported) {
   return b;
 }
 
+/// Whether a gap ‖v‖² − v·w (squared length units) meets the tolerances of
+/// options.convergence (see GjkConvergence), for ‖v‖² = vv; the tolerances are the user's,
+/// rounded to T. The one statement of the criterion: the distance loop's stopping test
+/// (gap_converged) and the bracket's acceptance both apply it.
+template <class T>
+bool gap_within_tolerance(const GjkDistanceOptions& options, T gap, T vv) {
+  switch (options.convergence) {
+    case GjkConvergence::relative:
+      return gap <= static_cast<T>(options.relative_gap) * vv ||
+             gap <= static_cast<T>(options.absolute_gap_squared);
+    case GjkConvergence::absolute:
+      return gap <= static_cast<T>(options.absolute_gap_squared);
+    case GjkConvergence::duality_gap:
+      return 2 * gap <= static_cast<T>(options.duality_gap_tolerance);
+  }
+  return false;
+}
+
 /// Whether the bracket is narrow enough for `converged` (see the file comment): the options'
 /// criterion on U and L, or a width within the pair's resolution (bracket_resolution).
 template <class T>
@@ -148,17 +166,7 @@ bool bracket_accepted(const GjkDistanceOptions& options, const DistanceBracketT<
   if (!(width >= 0) || !std::isfinite(width)) return false;
   if (width <= bracket_resolution(magnitude)) return true;
   // U² − U·L = U·(U − L), in squared length units, against the criterion's tolerances.
-  const T gap = b.upper * width * up;
-  switch (options.convergence) {
-    case GjkConvergence::relative:
-      return gap <= static_cast<T>(options.relative_gap) * (b.upper * b.upper) ||
-             gap <= static_cast<T>(options.absolute_gap_squared);
-    case GjkConvergence::absolute:
-      return gap <= static_cast<T>(options.absolute_gap_squared);
-    case GjkConvergence::duality_gap:
-      return 2 * gap <= static_cast<T>(options.duality_gap_tolerance);
-  }
-  return false;
+  return gap_within_tolerance(options, b.upper * width * up, b.upper * b.upper);
 }
 
 }  // namespace gjklab

@@ -347,17 +347,7 @@ inline constexpr T dot_roundoff = rounding_scaled<T>(kDotRoundoff);
 template <class T>
 bool gap_converged(const GjkDistanceOptions& options, T vv, T vw) {
   // Duality gap ‖v‖² − v·w ≥ ‖v‖² − ‖v‖·dist, on squared lengths.
-  const T gap = vv - vw;
-  switch (options.convergence) {
-    case GjkConvergence::relative:
-      return gap <= static_cast<T>(options.relative_gap) * vv ||
-             gap <= static_cast<T>(options.absolute_gap_squared);
-    case GjkConvergence::absolute:
-      return gap <= static_cast<T>(options.absolute_gap_squared);
-    case GjkConvergence::duality_gap:
-      return 2 * gap <= static_cast<T>(options.duality_gap_tolerance);
-  }
-  return false;
+  return gap_within_tolerance(options, vv - vw, vv);
 }
 
 namespace detail {
