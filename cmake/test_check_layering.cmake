@@ -25,11 +25,11 @@ endif()
 
 # One wrong-way include of each kind.
 put(src/geometry/wrong.cpp "// a comment\n\n#include \"gjklab/gjk/simplex.hpp\"\n")
-put(include/gjklab/geometry/wrong.hpp "#pragma once\n#  include <gjklab/experiment/config.hpp>\n")
+put(include/gjklab/geometry/wrong.hpp "#pragma once\n#  include <gjklab/experiment/config/config.hpp>\n")
 put(src/gjk/wrong.cpp "#include \"gjklab/exact/oracle.hpp\"\n")
 put(src/exact/wrong.cpp "#include \"../gjk/simplex.hpp\"\n")
 put(include/gjklab/exact/wrong.hpp "#pragma once\n#include <CGAL/Gmpq.h>\n")
-put(src/scene/wrong.cpp "#include \"gjklab/experiment/archive.hpp\"\n#include <hdf5.h>\n")
+put(src/scene/wrong.cpp "#include \"gjklab/experiment/archive/archive.hpp\"\n#include <hdf5.h>\n")
 put(src/peers/wrong.cpp "#include \"gjklab/cli.hpp\"\n")
 put(src/experiment/wrong.cpp "#include \"gjklab/scene/world.hpp\"\n#include <CLI/CLI.hpp>\n")
 execute_process(COMMAND ${CMAKE_COMMAND} -DRULES=${RULES} -DSOURCE_DIR=${WORK} -P ${CHECK}
@@ -39,11 +39,11 @@ if(status EQUAL 0)
 endif()
 set(expected
   "src/geometry/wrong.cpp:3: error: #include \"gjklab/gjk/simplex.hpp\" is a header of the gjk layer: geometry may not use gjk (geometry uses no other layer)"
-  "include/gjklab/geometry/wrong.hpp:2: error: #include \"gjklab/experiment/config.hpp\" is a header of the experiment layer: geometry may not use experiment"
+  "include/gjklab/geometry/wrong.hpp:2: error: #include \"gjklab/experiment/config/config.hpp\" is a header of the experiment layer: geometry may not use experiment"
   "src/gjk/wrong.cpp:1: error: #include \"gjklab/exact/oracle.hpp\" is a header of the exact layer: gjk may not use exact (gjk uses only geometry)"
   "src/exact/wrong.cpp:1: error: #include \"../gjk/simplex.hpp\" leaves the folder"
   "include/gjklab/exact/wrong.hpp:2: error: #include \"CGAL/Gmpq.h\" is included only in src/exact/, never in a public header"
-  "src/scene/wrong.cpp:1: error: #include \"gjklab/experiment/archive.hpp\" is a header of the experiment layer: scene may not use experiment"
+  "src/scene/wrong.cpp:1: error: #include \"gjklab/experiment/archive/archive.hpp\" is a header of the experiment layer: scene may not use experiment"
   "src/scene/wrong.cpp:2: error: #include \"hdf5.h\" is included only in src/experiment/"
   "src/peers/wrong.cpp:1: error: #include \"gjklab/cli.hpp\" is not a header of peers or of a layer it uses"
   "src/experiment/wrong.cpp:1: error: #include \"gjklab/scene/world.hpp\" is a header of the scene layer: experiment may not use scene"

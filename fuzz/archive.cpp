@@ -62,8 +62,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gjklab/experiment/archive.hpp"
-#include "gjklab/experiment/summary.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/run/summary.hpp"
 #include "libhdf5_report.hpp"
 #include "support.hpp"
 

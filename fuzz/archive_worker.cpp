@@ -28,7 +28,7 @@
 #include <string>
 #include <string_view>
 
-#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 #include "libhdf5_report.hpp"
 
 namespace {

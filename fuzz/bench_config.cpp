@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "gjklab/experiment/bench.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
 #include "support.hpp"
 
 namespace {

@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 #include "support.hpp"
 
 namespace {

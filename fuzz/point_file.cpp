@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 #include "support.hpp"
 
 namespace {

@@ -23,14 +23,14 @@
 #include <thread>
 #include <vector>
 
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
-#include "gjklab/experiment/families.hpp"
-#include "gjklab/experiment/real_objects.hpp"
-#include "gjklab/experiment/summary.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/cases/real_objects.hpp"
+#include "gjklab/experiment/run/summary.hpp"
 
 namespace py = pybind11;
 

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <ostream>
 
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/bench.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
 
 namespace gjklab::cli {
 

@@ -1,5 +1,5 @@
 // `gjklab bench`: every algorithm on identical inputs, interleaved in one process (see
-// gjklab/experiment/bench.hpp for the suites and the method).
+// gjklab/experiment/bench/bench.hpp for the suites and the method).
 #pragma once
 
 #include <iosfwd>

@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "gjklab/bench.hpp"
-#include "gjklab/experiment/provenance.hpp"
+#include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/hunt.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"

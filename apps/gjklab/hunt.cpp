@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
-#include "gjklab/experiment/hunt.hpp"
-#include "gjklab/experiment/ranks.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
+#include "gjklab/experiment/hunt/hunt.hpp"
+#include "gjklab/experiment/run/ranks.hpp"
 
 namespace gjklab::cli {
 

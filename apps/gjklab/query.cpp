@@ -11,8 +11,8 @@
 #include <ostream>
 #include <thread>
 
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 
 namespace gjklab::cli {
 

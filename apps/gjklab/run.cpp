@@ -12,11 +12,11 @@
 #include <ostream>
 #include <sstream>
 
-#include "gjklab/experiment/archive.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
-#include "gjklab/experiment/ranks.hpp"
-#include "gjklab/experiment/summary.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
+#include "gjklab/experiment/run/ranks.hpp"
+#include "gjklab/experiment/run/summary.hpp"
 #include "gjklab/stop_signals.hpp"
 
 namespace gjklab::cli {

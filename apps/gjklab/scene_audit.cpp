@@ -4,7 +4,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "gjklab/experiment/certified.hpp"
+#include "gjklab/experiment/registry/certified.hpp"
 #include "gjklab/scene/broadphase.hpp"
 
 namespace gjklab::cli {

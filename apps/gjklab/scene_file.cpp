@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
-#include "gjklab/experiment/real_objects.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/cases/real_objects.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::cli {

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 
 namespace gjklab::cli {
 

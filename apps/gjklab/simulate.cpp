@@ -14,8 +14,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/provenance.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/peers/bullet_broadphase.hpp"
 #include "gjklab/scene_audit.hpp"
 #include "gjklab/scene_file.hpp"

@@ -14,10 +14,10 @@
 #include "../support/degenerate_families.hpp"
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/certified.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/registry/certified.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 
 using namespace gjklab;
 using experiment::solve_certified;

@@ -15,8 +15,8 @@
 #include <tuple>
 
 #include "../support/degenerate_families.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

@@ -9,7 +9,7 @@
 #include <map>
 
 #include "../support/random_pairs.hpp"
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 

@@ -14,7 +14,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/scalar_cloud.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"

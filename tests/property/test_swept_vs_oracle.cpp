@@ -11,7 +11,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 using namespace gjklab;
 using testing::CloudKind;

@@ -8,10 +8,10 @@
 #include <variant>
 
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/archive.hpp"
-#include "gjklab/experiment/bench.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 
 using namespace gjklab;
 

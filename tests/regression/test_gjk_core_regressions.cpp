@@ -8,8 +8,8 @@
 
 #include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/trace.hpp"

@@ -10,8 +10,8 @@
 
 #include "../support/cli_run.hpp"
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/bench.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 
 using namespace gjklab;
 

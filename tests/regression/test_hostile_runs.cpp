@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "../support/cli_run.hpp"
-#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 
 using gjklab::testing::run_cli;
 using gjklab::testing::ScratchDir;

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 
 #include "../support/regression_case.hpp"
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "gjklab/experiment/seeded_random.hpp"
+#include "gjklab/experiment/cases/seeded_random.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::testing {

@@ -6,7 +6,7 @@
 #include <string>
 #include <variant>
 
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 
 namespace gjklab::testing {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/scene_file.hpp"
 
 namespace gjklab::testing {

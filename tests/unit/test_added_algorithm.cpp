@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 using namespace gjklab;

@@ -14,7 +14,7 @@
 
 #include <unistd.h>
 
-#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 
 namespace fs = std::filesystem;
 using namespace gjklab;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gjklab/experiment/archive.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 
 using namespace gjklab::experiment;
 

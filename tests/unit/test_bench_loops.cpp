@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 using namespace gjklab;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gjklab/experiment/bench.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
 
 using namespace gjklab::experiment;
 using namespace gjklab::experiment::bench;

@@ -9,9 +9,9 @@
 #include <set>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

@@ -13,9 +13,9 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
-#include "gjklab/experiment/provenance.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/peers/libccd.hpp"
 #ifdef GJKLAB_HAVE_FCL

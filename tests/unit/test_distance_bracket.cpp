@@ -10,9 +10,9 @@
 
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/scalar_cloud.hpp"
 #include "gjklab/gjk/bracket.hpp"

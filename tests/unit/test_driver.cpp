@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "gjklab/cli.hpp"
-#include "gjklab/experiment/archive.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 
 using namespace gjklab::experiment;
 namespace fs = std::filesystem;

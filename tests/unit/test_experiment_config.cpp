@@ -7,9 +7,9 @@
 #include <map>
 #include <string>
 
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

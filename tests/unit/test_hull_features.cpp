@@ -12,7 +12,7 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/hull_features.hpp"
-#include "gjklab/experiment/cloud_io.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
 

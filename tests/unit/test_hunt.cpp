@@ -12,9 +12,9 @@
 
 #include "../support/cli_run.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/hunt.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/hunt/hunt.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

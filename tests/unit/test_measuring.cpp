@@ -7,9 +7,9 @@
 #include <limits>
 #include <sstream>
 
-#include "gjklab/experiment/judging.hpp"
-#include "gjklab/experiment/records.hpp"
-#include "gjklab/experiment/summary.hpp"
+#include "gjklab/experiment/run/judging.hpp"
+#include "gjklab/experiment/cases/records.hpp"
+#include "gjklab/experiment/run/summary.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

@@ -7,8 +7,8 @@
 
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 
 using namespace gjklab;
 

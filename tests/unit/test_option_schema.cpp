@@ -7,8 +7,8 @@
 #include <string>
 #include <type_traits>
 
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

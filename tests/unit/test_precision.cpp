@@ -12,11 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "../support/cli_run.hpp"
-#include "gjklab/experiment/algorithm_options.hpp"
-#include "gjklab/experiment/algorithms.hpp"
-#include "gjklab/experiment/bench.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/bench/bench.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 #include "gjklab/geometry/scalar_cloud.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "gjklab/cli.hpp"
-#include "gjklab/experiment/algorithms.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <set>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/families.hpp"
-#include "gjklab/experiment/real_objects.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/cases/real_objects.hpp"
 
 using namespace gjklab;
 namespace ex = gjklab::experiment;

@@ -2,9 +2,9 @@
 // archived field survives the trip, and a damaged message is refused.
 #include <catch2/catch.hpp>
 
-#include "../../src/experiment/result_codec.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
+#include "../../src/experiment/run/result_codec.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 
 using namespace gjklab::experiment;
 

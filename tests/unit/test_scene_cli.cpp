@@ -20,7 +20,7 @@
 #include "../support/cli_run.hpp"
 #include "../support/scene_errors.hpp"
 #include "gjklab/cli.hpp"
-#include "gjklab/experiment/config.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/scene_audit.hpp"
 #include "gjklab/scene_file.hpp"

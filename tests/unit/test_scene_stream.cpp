@@ -11,9 +11,9 @@
 
 #include "../support/cli_run.hpp"
 #include "gjklab/cli.hpp"
-#include "gjklab/experiment/archive.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/scene_stream.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/cases/scene_stream.hpp"
 #include "gjklab/scene_file.hpp"
 
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "gjklab/experiment/seeded_random.hpp"
+#include "gjklab/experiment/cases/seeded_random.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

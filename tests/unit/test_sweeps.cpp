@@ -5,9 +5,9 @@
 #include <string>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/config.hpp"
-#include "gjklab/experiment/driver.hpp"
-#include "gjklab/experiment/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/run/driver.hpp"
+#include "gjklab/experiment/cases/families.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;

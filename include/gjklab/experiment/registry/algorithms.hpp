@@ -1,0 +1,212 @@
+// The algorithm registry: every query algorithm by name, behind one call signature.
+//
+// Experiment files, `gjklab query` and benchmarks select algorithms by these names. Adding an
+// algorithm is one entry in src/experiment/registry/algorithms.cpp.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gjklab/exact/oracle.hpp"
+#include "gjklab/experiment/registry/option_schema.hpp"
+#include "gjklab/geometry/polytope.hpp"
+#include "gjklab/gjk/epa.hpp"
+#include "gjklab/gjk/options.hpp"
+#include "gjklab/gjk/result.hpp"
+#include "gjklab/gjk/simplex.hpp"
+#include "gjklab/gjk/swept.hpp"
+#include "gjklab/gjk/trace.hpp"
+#include "gjklab/peers/libccd.hpp"
+#include "gjklab/peers/sat.hpp"
+#ifdef GJKLAB_HAVE_FCL
+#include "gjklab/peers/fcl.hpp"
+#endif
+
+namespace gjklab::experiment {
+
+/// Options of every algorithm, one struct each; an experiment records all of them.
+struct AlgorithmOptions {
+  GjkBooleanOptions gjk_boolean;
+  GjkDistanceOptions gjk_distance;  ///< gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi
+  GjkNesterovOptions gjk_nesterov;  ///< gjk-nesterov
+  peers::LibccdOptions libccd;
+  EpaOptions epa;  ///< `epa` (its GJK phase uses gjk_distance)
+  peers::SatOptions sat;
+#ifdef GJKLAB_HAVE_FCL
+  peers::FclOptions fcl;
+#endif
+  exact::OracleOptions oracle;
+  /// The floating-point type of the GJK queries (gjk-bool, the distance variants, epa): their
+  /// inputs are rounded to it and they compute in it; answers are reported in double.
+  ScalarPrecision precision = ScalarPrecision::double_float;
+  /// The GJK distance variants: start from the case's recorded simplex (the scene's previous
+  /// frame, `stream` family) instead of cold; cases without one run cold (see run_algorithm).
+  bool warm_start = false;
+
+  /// Sets the iteration bound of every iterative algorithm at once (libccd's penetration
+  /// queries: also max_depth_iterations; epa: also max_faces = 4 + 2n, so that the face buffer
+  /// does not bind before the iteration bound; Bullet's bounds are fixed at compile time).
+  void set_max_iterations(int n);
+};
+
+/// One algorithm's answer for one pair, in the vocabulary shared by all algorithms.
+struct Outcome {
+  bool intersect = false;
+  std::optional<double> distance;  ///< absent for boolean-only algorithms
+  /// Penetration depth of intersecting pairs, for algorithms that compute one (0 when they
+  /// report only touching); absent otherwise.
+  std::optional<double> depth;
+  /// With depth: the unit direction in which B must move by depth to separate the shapes
+  /// (PenetrationResult's convention).
+  std::optional<Vec3> normal;
+  /// Closest points of separated pairs; for penetration algorithms that report them, the
+  /// deepest points of intersecting pairs (witness_a − witness_b = depth·normal).
+  std::optional<Vec3> witness_a, witness_b;
+  /// The GJK distance queries' proven bracket of the exact distance (DistanceResult's
+  /// lower_bound and upper_bound); absent for other algorithms.
+  std::optional<double> lower_bound, upper_bound;
+  int iterations = 0;
+  int support_calls = 0;
+  Termination termination = Termination::converged;
+  std::optional<exact::OracleAnswer> exact;  ///< the full exact answer (algorithm `exact` only)
+};
+
+// ---- benchmark loops ---------------------------------------------------------------------
+//
+// `gjklab bench` times queries, not the registry's wrapping of them: a benchmark loop calls an
+// algorithm's query function directly, many times, with no Outcome, no allocation and no
+// exception handling per call, and tallies the answers so that the compiler must compute them.
+// Every loop has the same shape (repetitions × pairs, one direct call each), which keeps the
+// algorithms comparable.
+
+/// Two shapes of one query.
+struct BenchPair {
+  const Polytope* a = nullptr;
+  const Polytope* b = nullptr;
+};
+
+/// Sums over every query a benchmark loop made.
+struct BenchTally {
+  long long queries = 0;
+  long long iterations = 0;
+  long long support_calls = 0;
+  long long intersections = 0;
+  double distance_sum = 0;  ///< distance algorithms only
+};
+
+/// Runs the algorithm `repetitions` times over `pairs` (in order, repetition by repetition).
+using BenchLoop = BenchTally (*)(std::span<const BenchPair> pairs, const AlgorithmOptions& options,
+                                 int repetitions);
+
+/// A boolean GJK answer in the shared vocabulary (no distance), for an entry's run.
+Outcome from_boolean(const BooleanResult& r);
+/// A distance answer in the shared vocabulary (distance and closest points), for an entry's run.
+Outcome from_distance(const DistanceResult& r);
+
+enum class AnswerKind { boolean, distance, exact };
+
+struct AlgorithmInfo {
+  std::string_view name;
+  AnswerKind kind;
+  std::string_view description;
+  Outcome (*run)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options);
+  /// The same query with a per-iteration trace (same arithmetic); nullptr when the algorithm
+  /// cannot be traced (peers, the oracle).
+  Outcome (*run_traced)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options,
+                        TraceRecorder& trace) = nullptr;
+  /// A third-party library behind an adapter (libccd, FCL, Bullet): its disagreements with
+  /// the exact oracle are counted and reported, not treated as gjklab bugs.
+  bool peer = false;
+  /// Reports a penetration depth for intersecting pairs (Outcome::depth).
+  bool depth = false;
+  /// The query on sphere-swept shapes (each polytope swept by a ball of its radius); nullptr
+  /// when the algorithm handles polytopes only (SAT's axes, and the FCL and Bullet adapters,
+  /// which build plain convex hulls). GJK distance queries run on the cores and shift the
+  /// answer by the radii (see gjk/swept.hpp); the boolean GJK and libccd walk the swept
+  /// support map; the oracle answers with exact::solve_swept.
+  Outcome (*run_swept)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                       const AlgorithmOptions& options) = nullptr;
+  /// The same with a per-iteration trace (of the cores' query for distance algorithms).
+  Outcome (*run_swept_traced)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                              const AlgorithmOptions& options, TraceRecorder& trace) = nullptr;
+  /// The query in float or long double (options.precision; nullptr for algorithms that run in
+  /// double only): on the clouds rounded to that precision, with the radii (zero for plain
+  /// polytopes) and a trace when `trace` is not null. run_algorithm dispatches to it.
+  Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                              const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
+  /// The query started from a simplex given by vertex indices into a's and b's vertex lists
+  /// (gjk_distance_warm_with; on the cores of swept shapes), with a trace when `trace` is not
+  /// null; nullptr when the algorithm cannot be warm-started. In double only.
+  Outcome (*run_warm)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
+                      std::span<const SimplexVertex> warm, const AlgorithmOptions& options,
+                      TraceRecorder* trace) = nullptr;
+  /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
+  /// archive's description and replay all follow from it.
+  OptionSchema options = {};
+  /// The benchmark's direct loop of the query (see BenchLoop); nullptr when it has none (the
+  /// oracle: minutes per query on large clouds), and the benchmark then loops over run.
+  BenchLoop bench = nullptr;
+};
+
+/// Whether the algorithm can run in another precision than double (options.precision).
+bool takes_precision(const AlgorithmInfo& algorithm);
+
+/// Whether the algorithm can answer for a pair with these radii (any algorithm, for zero radii).
+bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii);
+/// Whether the algorithm can trace a pair with these radii.
+bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii);
+
+/// Runs the algorithm on the polytopes (zero radii) or on the shapes they make swept by the
+/// radii. Throws std::invalid_argument naming the algorithm when !handles(algorithm, radii).
+/// With options.warm_start and a non-empty `warm` (the case's recorded simplex), the query
+/// starts from it (AlgorithmInfo::run_warm); it throws std::invalid_argument when the
+/// algorithm cannot, or in another precision than double.
+Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                      const SweptRadii& radii, const AlgorithmOptions& options,
+                      std::span<const SimplexVertex> warm = {});
+/// The same with a per-iteration trace. Throws std::invalid_argument naming the algorithm when
+/// !can_trace(algorithm, radii).
+Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
+                             const SweptRadii& radii, const AlgorithmOptions& options,
+                             TraceRecorder& trace, std::span<const SimplexVertex> warm = {});
+
+/// Every registered algorithm, in a fixed order (the default order of outputs).
+std::span<const AlgorithmInfo> algorithms();
+/// The algorithm with this name, or nullptr.
+const AlgorithmInfo* find_algorithm(std::string_view name);
+/// "gjk-bool, gjk-johnson, …": the valid names, for error messages.
+std::string algorithm_names();
+
+/// An algorithm defined outside the library's registry (a test's, an extension's), registered
+/// for as long as this object lives: algorithms(), find_algorithm, experiment files, the
+/// benchmark and replay then treat it as any registered one, after the library's algorithms.
+/// Its entry is made like theirs (AlgorithmInfo from its query and option schema), so adding
+/// one is its file and this one line. Not thread-safe: add and remove while no query runs.
+/// Throws std::invalid_argument for a name already registered, std::length_error when too many
+/// are added at once.
+class AddedAlgorithm {
+ public:
+  explicit AddedAlgorithm(const AlgorithmInfo& algorithm);
+  ~AddedAlgorithm();
+  AddedAlgorithm(const AddedAlgorithm&) = delete;
+  AddedAlgorithm& operator=(const AddedAlgorithm&) = delete;
+
+ private:
+  std::string_view name_;
+};
+
+// ---- benchmark loops (the types above; the lookups here) ----------------------------------
+
+/// The algorithm's direct benchmark loop (AlgorithmInfo::bench), or nullptr if it has none or
+/// there is no such algorithm (the benchmark then loops over AlgorithmInfo::run and says so).
+BenchLoop find_bench_loop(std::string_view name);
+
+/// A loop over AlgorithmInfo::run, for algorithms without a direct loop.
+BenchTally run_bench_loop_via_registry(const AlgorithmInfo& algorithm,
+                                       std::span<const BenchPair> pairs,
+                                       const AlgorithmOptions& options, int repetitions);
+
+}  // namespace gjklab::experiment

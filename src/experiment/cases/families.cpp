@@ -1,0 +1,776 @@
+#include "gjklab/experiment/cases/families.hpp"
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "gjklab/experiment/cases/seeded_random.hpp"
+#include "gjklab/geometry/polytope.hpp"
+#include "gjklab/geometry/shapes.hpp"
+
+namespace gjklab::experiment {
+
+namespace {
+
+// ---- seeding ----
+//
+// GSL's generators take 32-bit seeds (gsl_rng_mt19937 keeps the low 32 bits of its seed). A
+// 64-bit hash of (seed, case id) truncated to 32 bits would give two cases of one experiment
+// the same stream with probability ~n²/2³³ (even odds at 77 000 cases). Instead the
+// experiment seed is mixed into a 64-bit key with splitmix64, and the case id goes through a
+// bijection of 32-bit integers keyed by it: within an experiment, case ids below 2³² get
+// pairwise different generator seeds, and the seeds of consecutive ids look unrelated.
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// MurmurHash3's finaliser: a bijection of 32-bit integers with full avalanche.
+std::uint32_t fmix32(std::uint32_t h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bU;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35U;
+  h ^= h >> 16;
+  return h;
+}
+
+}  // namespace
+
+std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id) {
+  const std::uint64_t key = splitmix64(seed);
+  const auto lo = static_cast<std::uint32_t>(key);
+  const auto hi = static_cast<std::uint32_t>(key >> 32);
+  return fmix32(fmix32(static_cast<std::uint32_t>(case_id) + lo) ^ hi);
+}
+
+namespace {
+
+/// Uniform in [0, 1).
+double uniform(gsl_rng* r) {
+  return gsl_rng_uniform(r);
+}
+
+/// Log-uniform in [lo, hi] (0 < lo <= hi).
+double log_uniform(gsl_rng* r, const Interval& range) {
+  const double u = uniform(r);
+  if (range.lo == range.hi) return range.lo;
+  return std::clamp(range.lo * std::pow(range.hi / range.lo, u), range.lo, range.hi);
+}
+
+/// Integer with P(n) ∝ log((n + 1) / n) on [lo, hi]: the floor of a log-uniform variate on
+/// [lo, hi + 1), so every scale of vertex counts gets an equal share.
+int log_uniform_count(gsl_rng* r, const Interval& range) {
+  const double u = uniform(r);
+  const double lo = range.lo;
+  const double hi = range.hi;
+  if (lo == hi) return static_cast<int>(lo);
+  const double x = std::floor(lo * std::pow((hi + 1) / lo, u));
+  return static_cast<int>(std::clamp(x, lo, hi));
+}
+
+Vec3 unit_vector(gsl_rng* r) {
+  double x = 0, y = 0, z = 0;
+  gsl_ran_dir_3d(r, &x, &y, &z);
+  return {x, y, z};
+}
+
+/// A rotation uniform on SO(3): a normalised quaternion of four independent Gaussians.
+Mat3 random_rotation(gsl_rng* r) {
+  for (;;) {
+    const double w = gsl_ran_gaussian(r, 1.0);
+    const double x = gsl_ran_gaussian(r, 1.0);
+    const double y = gsl_ran_gaussian(r, 1.0);
+    const double z = gsl_ran_gaussian(r, 1.0);
+    const Quat q(w, x, y, z);
+    if (q.norm() > 1e-6) return q.normalized().toRotationMatrix();
+  }
+}
+
+std::size_t draw_family(gsl_rng* r, const std::vector<FamilySpec>& families) {
+  // Weights are relative: scaled by the largest, so that their sum cannot overflow (two
+  // weights of 1e308 once summed to infinity and sent every case to the last family). The
+  // scaling is by a power of two, which leaves the draws of ordinary weights bit for bit.
+  double largest = 0;
+  for (const FamilySpec& f : families)
+    largest = std::max(largest, f.weight);
+  const double unit = largest > 0x1p1000 ? std::exp2(std::floor(std::log2(largest))) : 1.0;
+  double total = 0;
+  for (const FamilySpec& f : families)
+    total += f.weight / unit;
+  const double target = uniform(r) * total;
+  double cumulative = 0;
+  for (std::size_t i = 0; i < families.size(); ++i) {
+    cumulative += families[i].weight / unit;
+    if (target < cumulative) return i;
+  }
+  return families.size() - 1;
+}
+
+Vec3 vertex_mean(const std::vector<Vec3>& cloud) {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& p : cloud)
+    sum += p;
+  return sum / static_cast<double>(cloud.size());
+}
+
+/// One of the 24 rotations that permute the axes and flip signs (determinant +1): exact in
+/// double, so flat clouds stay exactly flat and dyadic coordinates stay exact.
+Mat3 random_axis_rotation(gsl_rng* r) {
+  static constexpr int kPermutations[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                              {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  const unsigned k = static_cast<unsigned>(gsl_rng_uniform_int(r, 6));
+  const int parity = k < 3 ? 1 : -1;
+  double signs[3];
+  for (double& sgn : signs)
+    sgn = gsl_rng_uniform_int(r, 2) ? 1.0 : -1.0;
+  // The product of the signs must equal the permutation's parity for determinant +1.
+  if (signs[0] * signs[1] * signs[2] != parity) signs[2] = -signs[2];
+  Mat3 m = Mat3::Zero();
+  for (int row = 0; row < 3; ++row)
+    m(row, kPermutations[k][row]) = signs[row];
+  return m;
+}
+
+/// The family's rotation of one shape (identity, uniform on SO(3), or a signed axis
+/// permutation).
+Mat3 draw_rotation(gsl_rng* r, Rotation mode) {
+  switch (mode) {
+    case Rotation::none:
+      return Mat3::Identity();
+    case Rotation::random:
+      return random_rotation(r);
+    case Rotation::axes:
+      return random_axis_rotation(r);
+  }
+  return Mat3::Identity();
+}
+
+/// Generates one shape and moves it to the origin (vertex mean), rotates it there as the
+/// family says, and scales it by `scale`.
+std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec& family,
+                             double scale) {
+  const double aspect = kind == ShapeKind::sliver ? log_uniform(r, family.aspect) : 1.0;
+  std::vector<Vec3> cloud = kind == ShapeKind::mesh
+                                ? family.meshes[gsl_rng_uniform_int(r, family.meshes.size())]
+                                : generate_shape(kind, n, r, aspect);
+  const Vec3 mean = vertex_mean(cloud);
+  for (Vec3& p : cloud)
+    p -= mean;
+  if (family.rotation != Rotation::none) {
+    const Mat3 rotation = draw_rotation(r, family.rotation);
+    for (Vec3& p : cloud)
+      p = rotation * p;
+  }
+  for (Vec3& p : cloud)
+    p *= scale;
+  return cloud;
+}
+
+// ---- contact families ----
+//
+// Each configuration is built with the contact plane z = 0, A below and B above, from
+// coordinates that are small multiples of 1/8, so the pair is in exact contact (distance 0).
+// B's lateral offset (dx, dy) is drawn from the multiples of 1/8 in [-7/8, 7/8], which keeps
+// the contact feature inside the other shape's face or edge.
+
+double dyadic_offset(gsl_rng* r) {
+  return (static_cast<double>(gsl_rng_uniform_int(r, 15)) - 7.0) / 8.0;
+}
+
+/// Box [-1, 1]² × [-2, 0] (top face in the contact plane).
+std::vector<Vec3> box_below() {
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-2.0, 0.0})
+        v.emplace_back(x, y, z);
+  return v;
+}
+
+/// Box [dx-1, dx+1] × [dy-1, dy+1] × [0, 2] (bottom face in the contact plane).
+std::vector<Vec3> box_above(double dx, double dy) {
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {0.0, 2.0})
+        v.emplace_back(dx + x, dy + y, z);
+  return v;
+}
+
+/// Triangular prism with its ridge along y at x = 0, z = 0, widening downwards.
+std::vector<Vec3> roof_below() {
+  return {Vec3(0, -1, 0),  Vec3(0, 1, 0),   Vec3(-1, -1, -1),
+          Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(1, 1, -1)};
+}
+
+/// Triangular prism with its ridge along `axis` (unit, in the plane z = 0) through (dx, dy, 0),
+/// widening upwards. Exact when axis is ±x or ±y.
+std::vector<Vec3> ridge_above(const Vec3& axis, double dx, double dy) {
+  const Vec3 across(-axis.y(), axis.x(), 0);
+  const Vec3 c(dx, dy, 0);
+  return {c - axis,
+          c + axis,
+          c - axis - across + Vec3(0, 0, 1),
+          c - axis + across + Vec3(0, 0, 1),
+          c + axis - across + Vec3(0, 0, 1),
+          c + axis + across + Vec3(0, 0, 1)};
+}
+
+/// Square pyramid with its apex at (dx, dy, 0) and base at z = ±1 (sign: +1 above).
+std::vector<Vec3> pyramid(double dx, double dy, double side) {
+  std::vector<Vec3> v{Vec3(dx, dy, 0)};
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      v.emplace_back(dx + x, dy + y, side);
+  return v;
+}
+
+struct ContactPair {
+  std::vector<Vec3> a, b;
+  ShapeKind shape_a, shape_b;
+};
+
+// ---- the thin contacts: A below z = 0, B above, touching at the origin ----------------------
+
+/// The rotation by θ about the z axis.
+Mat3 about_z(double theta) {
+  return Eigen::AngleAxisd(theta, Vec3::UnitZ()).toRotationMatrix();
+}
+
+/// The segment (±1, 0, 0) turned by θ about z.
+std::vector<Vec3> segment_at(double theta) {
+  const Mat3 turn = about_z(theta);
+  return {turn * Vec3(-1, 0, 0), turn * Vec3(1, 0, 0)};
+}
+
+/// The needle triangle (−1, 0, 0), (1, 0, 0), (1/2, 2/aspect, 0) in the plane z = 0.
+std::vector<Vec3> needle_triangle(double aspect) {
+  return {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 2 / aspect, 0)};
+}
+
+/// A k-gon prism of length 2 along x, radius ρ, with one vertex line on the x axis and the
+/// rest on the side `side` (−1: below z = 0), turned by θ about z.
+std::vector<Vec3> rod(int k, double rho, double side, double theta) {
+  const Mat3 turn = about_z(theta);
+  std::vector<Vec3> v;
+  for (int j = 0; j < k; ++j) {
+    const double phi = 2 * M_PI * j / k;
+    // Vertex 0 is on the axis exactly; the others around the centre (0, 0, side·ρ).
+    const double y = j == 0 ? 0.0 : -rho * std::sin(phi);
+    const double z = j == 0 ? 0.0 : side * rho * (1 - std::cos(phi));
+    for (double x : {-1.0, 1.0})
+      v.push_back(turn * Vec3(x, y, z));
+  }
+  return v;
+}
+
+/// A triangular prism of length 2 along x whose ridge is the x axis and which widens to
+/// ±1/aspect at z = side, turned by θ about z.
+std::vector<Vec3> sharp_wedge(double aspect, double side, double theta) {
+  const Mat3 turn = about_z(theta);
+  std::vector<Vec3> v;
+  for (double x : {-1.0, 1.0}) {
+    v.push_back(turn * Vec3(x, 0, 0));
+    for (double y : {-1.0, 1.0})
+      v.push_back(turn * Vec3(x, y / aspect, side));
+  }
+  return v;
+}
+
+/// A plate [−1, 1]² × [−1/aspect, 0], and one on top of it tilted by θ about its edge x = −1.
+ContactPair plates(double aspect, double theta) {
+  const double t = 1 / aspect;
+  const Mat3 tilt = Eigen::AngleAxisd(-theta, Vec3::UnitY()).toRotationMatrix();
+  std::vector<Vec3> a, b;
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-t, 0.0}) {
+        a.emplace_back(x, y, z);
+        b.push_back(Vec3(-1, 0, 0) + tilt * Vec3(x + 1, y, z + t));
+      }
+  return {a, b, ShapeKind::plate, ShapeKind::plate};
+}
+
+ContactPair build_thin_contact(ContactType type, gsl_rng* r, const FamilySpec& family) {
+  const double theta = log_uniform(r, family.angle);
+  const double aspect = log_uniform(r, family.aspect);
+  switch (type) {
+    case ContactType::crossing_segments:
+      return {segment_at(0), segment_at(theta), ShapeKind::segment, ShapeKind::segment};
+    case ContactType::needle_point:
+      return {needle_triangle(aspect),
+              {Vec3(0.25, 0.5 / aspect, 0)},
+              ShapeKind::needle,
+              ShapeKind::single_point};
+    case ContactType::needle_segment: {
+      std::vector<Vec3> b = segment_at(theta);
+      for (Vec3& p : b)
+        p += Vec3(0.25, 1 / aspect, 0);
+      return {needle_triangle(aspect), b, ShapeKind::needle, ShapeKind::segment};
+    }
+    case ContactType::thin_rods: {
+      const int k = 3 + static_cast<int>(gsl_rng_uniform_int(r, 6));
+      return {rod(k, 1 / aspect, -1, 0), rod(k, 1 / aspect, 1, theta), ShapeKind::rod,
+              ShapeKind::rod};
+    }
+    case ContactType::crossing_wedges: {
+      // Half the cases nearly parallel ridges, half ridges crossing at any angle.
+      const double crossing = uniform(r) < 0.5 ? theta : 0.5 * M_PI * uniform(r);
+      return {sharp_wedge(aspect, -1, 0), sharp_wedge(aspect, 1, crossing), ShapeKind::wedge,
+              ShapeKind::wedge};
+    }
+    case ContactType::tilted_plates:
+      return plates(aspect, theta);
+    default:
+      break;
+  }
+  throw std::invalid_argument("build_thin_contact: not a thin contact family");
+}
+
+ContactPair build_contact(ContactType type, gsl_rng* r, const FamilySpec& family) {
+  const double dx = dyadic_offset(r), dy = dyadic_offset(r);
+  const Vec3 x_axis = Vec3::UnitX();
+  switch (type) {
+    case ContactType::face_face:
+      return {box_below(), box_above(dx, dy), ShapeKind::box, ShapeKind::box};
+    case ContactType::edge_edge:
+      return {roof_below(), ridge_above(x_axis, dx, dy), ShapeKind::prism, ShapeKind::prism};
+    case ContactType::vertex_face:
+      return {box_below(), pyramid(dx, dy, 1), ShapeKind::box, ShapeKind::pyramid};
+    case ContactType::edge_face:
+      return {box_below(), ridge_above(x_axis, dx, dy), ShapeKind::box, ShapeKind::prism};
+    case ContactType::vertex_edge:
+      return {roof_below(), pyramid(0, dy, 1), ShapeKind::prism, ShapeKind::pyramid};
+    case ContactType::vertex_vertex:
+      return {pyramid(0, 0, -1), pyramid(0, 0, 1), ShapeKind::pyramid, ShapeKind::pyramid};
+    case ContactType::parallel_edges: {
+      // The ridges cross at the origin at a small angle θ: nearly parallel edges in contact.
+      const double theta = log_uniform(r, family.angle);
+      const Vec3 axis(-std::sin(theta), std::cos(theta), 0);
+      return {roof_below(), ridge_above(axis, 0, 0), ShapeKind::prism, ShapeKind::prism};
+    }
+    case ContactType::none:
+      break;
+    default:
+      return build_thin_contact(type, r, family);
+  }
+  throw std::invalid_argument("build_contact: not a contact family");
+}
+
+constexpr ContactType kExactContacts[] = {ContactType::face_face,   ContactType::edge_edge,
+                                          ContactType::vertex_face, ContactType::edge_face,
+                                          ContactType::vertex_edge, ContactType::vertex_vertex};
+
+std::vector<Vec3> points_of(const Polytope& p) {
+  return {p.vertices().begin(), p.vertices().end()};
+}
+
+}  // namespace
+
+namespace {
+
+// The random clouds, n points each. Each draws its coordinates in a fixed order from r: a
+// case is generated from (seed, id) alone, so the order is part of the reference archives.
+
+std::vector<Vec3> sphere_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.push_back(unit_vector(r));
+  return cloud;
+}
+
+std::vector<Vec3> ball_cloud(int n, gsl_rng* r) {
+  // Rejection from the cube [-1, 1)^3 (accepts π/6 ≈ 52%); the test is the same squared
+  // norm Eigen computes, so every accepted point has norm ≤ 1 as Eigen reports it.
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  while (static_cast<int>(cloud.size()) < n) {
+    const Vec3 p(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
+    if (p.squaredNorm() <= 1) cloud.push_back(p);
+  }
+  return cloud;
+}
+
+std::vector<Vec3> cube_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.emplace_back(2 * uniform(r) - 1, 2 * uniform(r) - 1, 2 * uniform(r) - 1);
+  return cloud;
+}
+
+std::vector<Vec3> gaussian_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double x = gsl_ran_gaussian(r, 1.0);
+    const double y = gsl_ran_gaussian(r, 1.0);
+    const double z = gsl_ran_gaussian(r, 1.0);
+    cloud.emplace_back(x, y, z);
+  }
+  return cloud;
+}
+
+/// Uniform in the unit disk of the plane z = 0.
+std::vector<Vec3> disk_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double radius = std::sqrt(uniform(r));
+    const double angle = 2 * M_PI * uniform(r);
+    cloud.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+  }
+  return cloud;
+}
+
+/// Uniform on the segment [-1, 1] of the x axis.
+std::vector<Vec3> segment_cloud(int n, gsl_rng* r) {
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.emplace_back(2 * uniform(r) - 1, 0.0, 0.0);
+  return cloud;
+}
+
+/// n points drawn from three distinct points of the unit sphere.
+std::vector<Vec3> duplicate_cloud(int n, gsl_rng* r) {
+  const Vec3 distinct[3] = {unit_vector(r), unit_vector(r), unit_vector(r)};
+  std::vector<Vec3> cloud;
+  cloud.reserve(n);
+  for (int i = 0; i < n; ++i)
+    cloud.push_back(distinct[gsl_rng_uniform_int(r, 3)]);
+  return cloud;
+}
+
+}  // namespace
+
+namespace {
+
+gsl_rng* as_rng(void* r) {
+  return static_cast<gsl_rng*>(r);
+}
+
+/// The family registry's generated shapes: one row each (the ShapeKind, what it makes, its
+/// vertex count when the family gives none, its generator). A new generated shape is its
+/// generator and one row here; family_shapes, generate_shape and the experiment parser follow.
+/// Rows a family cannot name (prism, pyramid: parts of the contact families) come last. A row
+/// ending in `…, nameable, body_cloud` differs from the defaults (nameable, not a body cloud):
+/// `true, true` for the clouds a scene's bodies may draw too.
+constexpr ShapeGenerator kShapeGenerators[] = {
+    {ShapeKind::sphere_points, "points uniform on the unit sphere", 32,
+     [](int n, void* r, double) { return sphere_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::ball_points, "points uniform in the unit ball", 32,
+     [](int n, void* r, double) { return ball_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::cube_points, "points uniform in the cube [-1, 1]^3", 32,
+     [](int n, void* r, double) { return cube_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::gaussian, "standard normal cloud", 32,
+     [](int n, void* r, double) { return gaussian_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::box, "demo box (8 vertices)", 8,
+     [](int, void*, double) { return points_of(shapes::box()); }},
+    {ShapeKind::cone, "demo cone (apex and a ring)", 33,
+     [](int n, void*, double) { return points_of(shapes::cone(std::max(n, 4))); }},
+    {ShapeKind::cylinder, "demo cylinder (two rings)", 64,
+     [](int n, void*, double) { return points_of(shapes::cylinder(std::max(n + (n & 1), 6))); }},
+    {ShapeKind::uv_sphere, "demo UV sphere", 482,
+     [](int n, void*, double) { return points_of(shapes::uv_sphere(std::max(n, 6))); }},
+    {ShapeKind::flat_points,
+     "points uniform in the unit disk of the plane z = 0 (exactly coplanar)", 32,
+     [](int n, void* r, double) { return disk_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::collinear_points, "points uniform on the segment [-1, 1] of the x axis", 32,
+     [](int n, void* r, double) { return segment_cloud(n, as_rng(r)); }, true, true},
+    {ShapeKind::duplicate_points, "n points drawn from three distinct points on the unit sphere",
+     32, [](int n, void* r, double) { return duplicate_cloud(n, as_rng(r)); }},
+    {ShapeKind::single_point, "one point at the origin", 32,
+     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+    {ShapeKind::sliver, "box of extents 1 x 1 x 1/aspect", 32,
+     [](int, void*, double aspect) { return points_of(shapes::box(Vec3(1, 1, 1 / aspect))); }, true,
+     true},
+    {ShapeKind::sphere, "sphere-swept point (a ball of the family's radius)", 32,
+     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+    {ShapeKind::capsule, "sphere-swept segment (+-1, 0, 0)", 32,
+     [](int, void*, double) {
+       return std::vector<Vec3>{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
+     }},
+    {ShapeKind::prism, "", 32, [](int, void*, double) { return roof_below(); }, false, true},
+    {ShapeKind::pyramid, "", 32, [](int, void*, double) { return pyramid(0, 0, -1); }, false, true},
+    {ShapeKind::segment, "", 2, [](int, void*, double) { return segment_at(0); }, false},
+    {ShapeKind::needle, "", 3, [](int, void*, double a) { return needle_triangle(a); }, false},
+    {ShapeKind::rod, "", 12, [](int, void*, double a) { return rod(6, 1 / a, -1, 0); }, false},
+    {ShapeKind::wedge, "", 6, [](int, void*, double a) { return sharp_wedge(a, -1, 0); }, false},
+    {ShapeKind::plate, "", 8, [](int, void*, double a) { return plates(a, 0).a; }, false},
+};
+
+}  // namespace
+
+std::span<const ShapeGenerator> shape_generators() {
+  return kShapeGenerators;
+}
+
+const ShapeGenerator* find_shape_generator(ShapeKind kind) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.kind == kind) return &g;
+  return nullptr;
+}
+
+const ShapeGenerator* find_shape_generator(std::string_view name) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.nameable && to_string(g.kind) == name) return &g;
+  return nullptr;
+}
+
+const ShapeGenerator* find_body_cloud(std::string_view name) {
+  for (const ShapeGenerator& g : kShapeGenerators)
+    if (g.body_cloud && to_string(g.kind) == name) return &g;
+  return nullptr;
+}
+
+std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, double aspect) {
+  if (n < 1) throw std::invalid_argument("generate_shape: vertex count must be at least 1");
+  if (kind == ShapeKind::from_file || kind == ShapeKind::mesh)
+    throw std::invalid_argument("generate_shape: this shape's clouds come from the family's files");
+  const ShapeGenerator* generator = find_shape_generator(kind);
+  if (!generator) throw std::invalid_argument("generate_shape: unknown shape kind");
+  return generator->generate(n, gsl_rng_handle, aspect);
+}
+
+namespace {
+
+/// Placement mode of one case (mixed draws overlapping with its fraction).
+Placement draw_placement(gsl_rng* r, const PlacementSpec& placement) {
+  switch (placement.mode) {
+    case PlacementMode::separated:
+      return Placement::separated;
+    case PlacementMode::overlapping:
+      return Placement::overlapping;
+    case PlacementMode::touching:
+      return Placement::touching;
+    case PlacementMode::random:
+      return Placement::random;
+    case PlacementMode::mixed:
+      return uniform(r) < placement.overlapping_fraction ? Placement::overlapping
+                                                         : Placement::separated;
+  }
+  throw std::invalid_argument("generate_case: unknown placement mode " +
+                              std::to_string(static_cast<int>(placement.mode)));
+}
+
+/// The drawn gap relative to size: > 0 separated, < 0 overlapping, 0 otherwise.
+double draw_gap(gsl_rng* r, Placement mode, const PlacementSpec& placement) {
+  if (mode == Placement::separated) return log_uniform(r, placement.gap);
+  if (mode == Placement::overlapping) return -log_uniform(r, placement.depth);
+  return 0;
+}
+
+/// A sphere-swept shape's radius in shape units (before scaling): 0 without a radius (no draw,
+/// so families without radii keep their random streams), else log-uniform in the range.
+double draw_radius(gsl_rng* r, const Interval& range) {
+  return range.hi == 0 ? 0.0 : log_uniform(r, range);
+}
+
+/// Two generated shapes, B placed along a random axis by the drawn gap, or at random.
+/// Sphere-swept shapes are placed by the extents of the swept shapes (cores grown by radii).
+void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
+  CaseRecord& rec = out.record;
+  const int n_a = log_uniform_count(r, family.vertices_a);
+  const int n_b = log_uniform_count(r, family.vertices_b);
+  const double ratio = log_uniform(r, family.scale_ratio);
+  out.a = make_shape(r, family.shape_a, n_a, family, family.scale);
+  out.b = make_shape(r, family.shape_b, n_b, family, family.scale * ratio);
+  rec.radius_a = draw_radius(r, family.radius_a) * family.scale;
+  rec.radius_b = draw_radius(r, family.radius_b) * family.scale * ratio;
+
+  // Both vertex means are at the origin now; B moves along a random axis u.
+  const PlacementSpec& placement = family.placement;
+  const double size = pair_size(out.a, out.b, rec.radius_a, rec.radius_b);
+  Vec3 translation = Vec3::Zero();
+  const Placement mode = draw_placement(r, placement);
+  if (mode == Placement::random) {
+    const double half_width = placement.spread * size;
+    for (int k = 0; k < 3; ++k)
+      translation[k] = (2 * uniform(r) - 1) * half_width;
+  } else {
+    const Vec3 u = unit_vector(r);
+    // gap > 0: B's extent along u starts gap·size after A's; gap < 0: they overlap by −gap·size.
+    const double gap = draw_gap(r, mode, placement);
+    const double shift = (max_projection(out.a, u) + rec.radius_a) + gap * size -
+                         (min_projection(out.b, u) - rec.radius_b);
+    translation = shift * u;
+    rec.intended_gap = gap;
+    out.direction = u;
+  }
+  for (Vec3& p : out.b)
+    p += translation;
+  rec.placement = mode;
+}
+
+/// A contact configuration, turned by a signed axis permutation (exact; the thin contacts as
+/// the family's `rotate` says), B moved by ε·size along the contact normal as the placement
+/// says, then scaled.
+void place_contact_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
+  CaseRecord& rec = out.record;
+  const ContactType type = family.contact_any
+                               ? kExactContacts[gsl_rng_uniform_int(r, std::size(kExactContacts))]
+                               : family.contact;
+  ContactPair pair = build_contact(type, r, family);
+  rec.shape_a = pair.shape_a;
+  rec.shape_b = pair.shape_b;
+  // Scaling B about the contact point (the origin) keeps the contact.
+  const double ratio = log_uniform(r, family.scale_ratio);
+  for (Vec3& p : pair.b)
+    p *= ratio;
+  // The thin contacts turn as the family's `rotate` says (any rotation by default, so that
+  // their needles lie in no coordinate plane); the others by an exact axis permutation.
+  const bool thin = !exact_contact(type) && type != ContactType::parallel_edges;
+  const Mat3 turn = thin ? draw_rotation(r, family.rotation) : random_axis_rotation(r);
+  for (auto* cloud : {&pair.a, &pair.b})
+    for (Vec3& p : *cloud)
+      p = turn * p;
+  const Vec3 normal = turn * Vec3::UnitZ();
+
+  const Placement mode = draw_placement(r, family.placement);
+  const double gap = draw_gap(r, mode, family.placement);
+  const double shift = gap * pair_size(pair.a, pair.b);
+  if (shift != 0)
+    for (Vec3& p : pair.b)
+      p += shift * normal;
+  for (auto* cloud : {&pair.a, &pair.b})
+    for (Vec3& p : *cloud)
+      p *= family.scale;
+  out.a = std::move(pair.a);
+  out.b = std::move(pair.b);
+  out.direction = normal;
+  rec.placement = mode;
+  rec.intended_gap = gap;
+}
+
+/// A pair from the family's cases file, exactly as stored.
+void take_stored_pair(const FamilySpec& family, std::uint64_t case_id, GeneratedCase& out) {
+  const StoredPair& pair = family.stored[case_id % family.stored.size()];
+  out.a = pair.a;
+  out.b = pair.b;
+  out.record.radius_a = pair.radius_a;
+  out.record.radius_b = pair.radius_b;
+  out.warm = pair.warm;
+  out.record.placement = Placement::as_given;
+}
+
+}  // namespace
+
+namespace {
+
+/// Moves or scales the whole pair by a geometry-sweep value: the same base pair is run once
+/// per value. The offset direction is drawn from the base pair's own generator.
+void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
+                          GeneratedCase& out) {
+  if (sweep.parameter == "offset") {
+    const Vec3 t = value * unit_vector(r);
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud)
+        p += t;
+  } else {
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud)
+        p *= value;
+    out.record.scale *= value;
+    out.record.radius_a *= value;
+    out.record.radius_b *= value;
+  }
+}
+
+}  // namespace
+
+std::span<const FamilyShapeInfo> family_shapes() {
+  // The pair sources: families whose pairs are built or read whole, not drawn shape by shape.
+  static constexpr FamilyShapeInfo kPairSources[] = {
+      {"contact",
+       "pairs built in exact contact (face-face, edge-edge, ...), then moved by epsilon"},
+      {"file", "the pairs of a JSON-lines cases file (path)"},
+      {"stream", "the narrow-phase queries a scene archive recorded (path; cold, as queried)"},
+      {"mesh", "the vertices of mesh files (path: one .off/.obj/.ply/.stl file or a folder)"},
+      {"real_object",
+       "convex hulls of the real meshes of Debian's libcgal-demo (objects: names or \"all\"), "
+       "at unit size"},
+  };
+  static const std::vector<FamilyShapeInfo> shapes = [] {
+    std::vector<FamilyShapeInfo> out;
+    for (const ShapeGenerator& g : kShapeGenerators)
+      if (g.nameable) out.push_back({to_string(g.kind), g.description});
+    out.insert(out.end(), std::begin(kPairSources), std::end(kPairSources));
+    return out;
+  }();
+  return shapes;
+}
+
+void GslStreamFree::operator()(void* gsl_rng_handle) const {
+  gsl_rng_free(static_cast<gsl_rng*>(gsl_rng_handle));
+}
+
+GslStream case_stream(std::uint64_t seed, std::uint64_t id) {
+  GslStream stream(gsl_rng_alloc(gsl_rng_mt19937));
+  if (!stream) throw std::bad_alloc();
+  gsl_rng_set(static_cast<gsl_rng*>(stream.get()), case_stream_seed(seed, id));
+  return stream;
+}
+
+GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
+  if (config.families.empty())
+    throw std::invalid_argument("generate_case: the experiment has no families");
+  // With a geometry sweep, row case_id is base pair case_id / n under value case_id % n.
+  const std::uint64_t n_values = config.geometry_sweep ? config.geometry_sweep->values.size() : 1;
+  const std::uint64_t base_id = case_id / n_values;
+  const std::uint64_t value_index = case_id % n_values;
+  const GslStream rng = case_stream(config.seed, base_id);
+  gsl_rng* r = static_cast<gsl_rng*>(rng.get());
+
+  GeneratedCase out;
+  CaseRecord& rec = out.record;
+  rec.case_id = case_id;
+  const std::size_t family_index = draw_family(r, config.families);
+  const FamilySpec& family = config.families[family_index];
+  rec.family = static_cast<std::uint32_t>(family_index);
+  rec.shape_a = family.shape_a;
+  rec.shape_b = family.shape_b;
+  rec.scale = family.scale;
+
+  if (!family.stored.empty()) {
+    take_stored_pair(family, base_id, out);
+  } else if (family.contact != ContactType::none) {
+    place_contact_pair(r, family, out);
+  } else {
+    place_generated_pair(r, family, out);
+  }
+  // Large offsets: the whole pair moves, which changes no exact answer but every rounding.
+  if (family.offset.hi > 0) {
+    const Vec3 t = log_uniform(r, family.offset) * unit_vector(r);
+    for (auto* cloud : {&out.a, &out.b})
+      for (Vec3& p : *cloud)
+        p += t;
+  }
+
+  if (config.geometry_sweep) {
+    apply_geometry_sweep(*config.geometry_sweep, config.geometry_sweep->values[value_index], r,
+                         out);
+    rec.family = static_cast<std::uint32_t>(family_index * n_values + value_index);
+  }
+
+  rec.vertices_a = static_cast<std::int32_t>(out.a.size());
+  rec.vertices_b = static_cast<std::int32_t>(out.b.size());
+  rec.size = pair_size(out.a, out.b, rec.radius_a, rec.radius_b);
+  for (const auto* cloud : {&out.a, &out.b})
+    if (const std::string problem = describe_invalid_cloud(*cloud); !problem.empty())
+      throw std::runtime_error("generate_case " + std::to_string(case_id) + ": " + problem);
+  return out;
+}
+
+}  // namespace gjklab::experiment
