@@ -25,6 +25,7 @@
 
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/registry/answer_fields.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/run/driver.hpp"
@@ -212,28 +213,20 @@ struct ExactResult {
   exact::OracleAnswer answer;
 };
 
-/// The CLI's JSON object of one answer (query.cpp's answer_line), as a dict.
+/// The fields of `gjklab query`'s JSON line of one answer (experiment::answer_fields), as a
+/// dict; points and directions as tuples.
 py::dict query_dict(const QueryResult& r) {
   py::dict d;
-  d["algorithm"] = r.algorithm;
-  if (r.radius_a != 0 || r.radius_b != 0) {
-    d["radius_a"] = r.radius_a;
-    d["radius_b"] = r.radius_b;
-  }
-  const Outcome& o = r.outcome;
-  d["intersect"] = o.intersect;
-  if (o.distance) d["distance"] = *o.distance;
-  if (o.depth) d["depth"] = *o.depth;
-  if (o.normal) d["normal"] = vector_or_none(o.normal);
-  if (o.witness_a && o.witness_b) {
-    d["witness_a"] = vector_or_none(o.witness_a);
-    d["witness_b"] = vector_or_none(o.witness_b);
-  }
-  if (o.lower_bound) d["lower_bound"] = *o.lower_bound;
-  if (o.upper_bound) d["upper_bound"] = *o.upper_bound;
-  d["iterations"] = o.iterations;
-  d["support_calls"] = o.support_calls;
-  d["termination"] = std::string(to_string(o.termination));
+  for (const auto& [key, value] : experiment::answer_fields(
+           r.algorithm, r.outcome, ScalarPrecision::double_float, r.radius_a, r.radius_b))
+    std::visit(
+        [&](const auto& x) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Vec3>)
+            d[py::str(key)] = vector_or_none(std::optional<Vec3>(x));
+          else
+            d[py::str(key)] = x;
+        },
+        value);
   return d;
 }
 

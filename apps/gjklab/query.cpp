@@ -10,8 +10,11 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <thread>
+#include <type_traits>
+#include <variant>
 
 #include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/registry/answer_fields.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
 
 namespace gjklab::cli {
@@ -24,48 +27,26 @@ using experiment::CaseOrError;
 using experiment::PointCase;
 using Json = nlohmann::ordered_json;
 
-/// The JSON line of one algorithm's answer for one case.
+/// A field's value as JSON: a point or direction as [x, y, z].
+Json json_of(const experiment::AnswerValue& v) {
+  return std::visit(
+      [](const auto& x) -> Json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Vec3>)
+          return Json::array({x.x(), x.y(), x.z()});
+        else
+          return Json(x);
+      },
+      v);
+}
+
+/// The JSON line of one algorithm's answer for one case: its id, then answer_fields.
 std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
                         const experiment::Outcome& o, ScalarPrecision precision) {
   Json j;
   j["id"] = c.id;
-  j["algorithm"] = algorithm.name;
-  if (precision != ScalarPrecision::double_float) j["precision"] = to_string(precision);
-  if (c.radius_a != 0 || c.radius_b != 0) {
-    j["radius_a"] = c.radius_a;
-    j["radius_b"] = c.radius_b;
-  }
-  j["intersect"] = o.intersect;
-  if (o.distance) j["distance"] = *o.distance;
-  if (o.depth) j["depth"] = *o.depth;
-  if (o.normal) j["normal"] = {o.normal->x(), o.normal->y(), o.normal->z()};
-  if (o.witness_a && o.witness_b) {
-    j["witness_a"] = {o.witness_a->x(), o.witness_a->y(), o.witness_a->z()};
-    j["witness_b"] = {o.witness_b->x(), o.witness_b->y(), o.witness_b->z()};
-  }
-  // The proven bracket of the distance (null for an upper bound that nothing proved).
-  if (o.lower_bound) j["lower_bound"] = *o.lower_bound;
-  if (o.upper_bound) j["upper_bound"] = *o.upper_bound;
-  j["iterations"] = o.iterations;
-  j["support_calls"] = o.support_calls;
-  j["termination"] = to_string(o.termination);
-  if (o.exact) {
-    // For sphere-swept shapes the exact rationals are the cores' (the swept answers are
-    // irrational in general), and their keys say so.
-    const std::string prefix = o.exact->swept ? "core_" : "";
-    j[prefix + "distance2_num"] = o.exact->distance_squared.numerator();
-    j[prefix + "distance2_den"] = o.exact->distance_squared.denominator();
-    j["method"] = to_string(o.exact->method);
-    if (o.exact->hull_vertices_a >= 0) {
-      j["hull_vertices_a"] = o.exact->hull_vertices_a;
-      j["hull_vertices_b"] = o.exact->hull_vertices_b;
-    }
-    if (o.exact->depth_squared) {
-      j[prefix + "depth2_num"] = o.exact->depth_squared->numerator();
-      j[prefix + "depth2_den"] = o.exact->depth_squared->denominator();
-      j["depth_method"] = to_string(o.exact->depth_method);
-    }
-  }
+  for (const auto& [key, value] :
+       experiment::answer_fields(algorithm.name, o, precision, c.radius_a, c.radius_b))
+    j[key] = json_of(value);
   return experiment::json_line(j);
 }
 

@@ -13,7 +13,8 @@ namespace gjklab::cli {
 CLI::App* add_schema_command(CLI::App& app, SchemaArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "schema",
-      "print the results archive's schema tables (Markdown), as results/README.md has them");
+      "print the archives' schema tables (Markdown): the results archive's as results/README.md "
+      "has them, the scene archive's (scene/GROUP) as docs/scenes.md has them");
   cmd->add_option("--update", args.update,
                   "rewrite the tables between \"<!-- schema table: GROUP -->\" and \"<!-- end "
                   "schema table -->\" lines of this file");
@@ -23,7 +24,9 @@ CLI::App* add_schema_command(CLI::App& app, SchemaArgs& args) {
 namespace {
 
 void print_tables(std::ostream& out) {
-  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry", "enums"})
+  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry", "enums",
+                            "scene/root", "scene/frames", "scene/bodies", "scene/contacts",
+                            "scene/audit", "scene/queries", "scene/shapes", "scene/state"})
     out << "<!-- schema table: " << group << " -->\n"
         << experiment::archive_schema_table(group) << "<!-- end schema table -->\n\n";
 }

@@ -1,4 +1,4 @@
-// `gjklab simulate SCENE.toml`: steps a scene (scene_file.hpp) and writes its HDF5 archive:
+// `gjklab simulate SCENE.toml`: steps a scene (simulation/scene_run.hpp) and writes its archive:
 // frames/ one row per frame, bodies/ poses every k frames, contacts/ every k frames. A run
 // stopped by SIGINT/SIGTERM (or --stop-after) or killed leaves FILE.h5.tmp, a checkpoint with
 // the world's state/, which --resume continues into the archive an uninterrupted run writes.

@@ -84,14 +84,16 @@ TEST_CASE("bench config: a non-numeric [published] key and values of the wrong t
     return experiment::bench::load_bench_config(path);
   };
   CHECK_THROWS_WITH(load("[published.scene_ms]\nmany = 3.5\n"),
-                    Catch::Contains("key 'many' must be an object count"));
-  CHECK_THROWS_WITH(load("samples = 4294967297\n"), Catch::Contains("samples must be an integer"));
-  CHECK_THROWS_WITH(load("samples = \"31\"\n"), Catch::Contains("samples must be an integer"));
+                    Catch::Contains("bench.toml:2: key 'published.scene_ms.many': must be an object count"));
+  CHECK_THROWS_WITH(load("samples = 4294967297\n"),
+                    Catch::Contains("bench.toml:1: key 'samples': must be between 1 and 100000"));
+  CHECK_THROWS_WITH(load("samples = \"31\"\n"),
+                    Catch::Contains("bench.toml:1: key 'samples': expected an integer"));
   CHECK_THROWS_WITH(load("batch_seconds = 1e300\n"), Catch::Contains("batch_seconds"));
-  CHECK_THROWS_WITH(load("reference = 3\n"), Catch::Contains("reference must be a string"));
+  CHECK_THROWS_WITH(load("reference = 3\n"), Catch::Contains("bench.toml:1: key 'reference': expected a string"));
   CHECK_THROWS_WITH(load("[published.pair_us]\n\"box-box\" = nan\n"),
-                    Catch::Contains("published.pair_us.box-box must be a finite number >= 0"));
+                    Catch::Contains("bench.toml:2: key 'published.pair_us.box-box': must be finite"));
   CHECK_THROWS_WITH(load("[published.scene_ms]\n32 = -1.5\n"),
-                    Catch::Contains("published.scene_ms.32 must be a finite number >= 0"));
+                    Catch::Contains("bench.toml:2: key 'published.scene_ms.32': must be a finite number >= 0"));
   CHECK(load("samples = 7\n[published.scene_ms]\n32 = 1.5\n").samples == 7);
 }

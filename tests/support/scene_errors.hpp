@@ -4,14 +4,14 @@
 #include <string>
 
 #include "gjklab/experiment/config/config.hpp"
-#include "gjklab/scene_file.hpp"
+#include "gjklab/simulation/scene_file.hpp"
 
 namespace gjklab::testing {
 
 /// The ConfigError's message for `text` parsed as "bad.toml", or "" when it parses.
 inline std::string scene_error_of(const std::string& text) {
   try {
-    cli::parse_scene(text, "bad.toml");
+    simulation::parse_scene(text, "bad.toml");
   } catch (const experiment::ConfigError& e) {
     return e.what();
   }

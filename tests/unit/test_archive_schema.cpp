@@ -18,8 +18,8 @@ namespace {
 
 const std::vector<std::string> kGroups = {"cases", "exact", "algorithms", "traces", "geometry"};
 
-std::string results_readme() {
-  std::ifstream in(std::string(GJKLAB_TESTS_DIR) + "/../results/README.md", std::ios::binary);
+std::string document(const std::string& relative) {
+  std::ifstream in(std::string(GJKLAB_TESTS_DIR) + "/../" + relative, std::ios::binary);
   REQUIRE(in);
   std::stringstream text;
   text << in.rdbuf();
@@ -35,13 +35,26 @@ void check_names_unique(const std::vector<ArchiveColumn>& columns) {
 }  // namespace
 
 TEST_CASE("results/README.md's schema tables are the schema's rendering", "[unit][archive]") {
-  const std::string readme = results_readme();
+  const std::string readme = document("results/README.md");
   for (const std::string& group : kGroups)
     CHECK(readme.find("<!-- schema table: " + group + " -->\n") != std::string::npos);
   CHECK(readme.find("<!-- schema table: root -->\n") != std::string::npos);
   CHECK(readme.find("<!-- schema table: enums -->\n") != std::string::npos);
   INFO("regenerate with: gjklab schema --update results/README.md");
   CHECK(with_schema_tables(readme) == readme);
+}
+
+const std::vector<std::string> kSceneGroups = {"root",  "frames",  "bodies", "contacts",
+                                               "audit", "queries", "shapes", "state"};
+
+TEST_CASE("docs/scenes.md's scene archive tables are the scene schema's rendering",
+          "[unit][archive][scene]") {
+  const std::string page = document("docs/scenes.md");
+  for (const std::string& group : kSceneGroups)
+    CHECK(page.find("<!-- schema table: scene/" + group + " -->\n") != std::string::npos);
+  INFO("regenerate with: gjklab schema --update docs/scenes.md");
+  CHECK(with_schema_tables(page) == page);
+  CHECK_THROWS_AS(archive_schema_table("scene/no such group"), std::invalid_argument);
 }
 
 TEST_CASE("a schema table lists every column with its type and meaning", "[unit][archive]") {

@@ -161,6 +161,12 @@ TEST_CASE("bench config file and seed-tables Markdown", "[unit][bench]") {
   const Run bad = run_cli({"bench", "--config", cfg, "--quiet"});
   CHECK(bad.status == 2);
   CHECK(bad.err.find("sampels") != std::string::npos);
+  // The one TOML reader's errors: the file, the line and the key.
+  CHECK(bad.err.find(cfg + ":2: key 'sampels'") != std::string::npos);
+  std::ofstream(cfg) << "suites = [\"seed\"]\n[published.scene_ms]\n4 = -1\n";
+  const Run negative = run_cli({"bench", "--config", cfg, "--quiet"});
+  CHECK(negative.status == 2);
+  CHECK(negative.err.find(cfg + ":3: key 'published.scene_ms.4'") != std::string::npos);
 }
 
 TEST_CASE("bench usage errors exit with 2 and say what is wrong", "[unit][bench]") {

@@ -157,5 +157,5 @@ TEST_CASE("bench config: precision is read and checked", "[unit][precision]") {
   CHECK(bench::load_bench_config(write("bench_float.toml", "precision = \"float\"\n")).precision ==
         ScalarPrecision::single_float);
   CHECK_THROWS_WITH(bench::load_bench_config(write("bench_half.toml", "precision = \"half\"\n")),
-                    Catch::Contains("precision must be"));
+                    Catch::Contains("bench_half.toml:1: key 'precision': must be"));
 }

@@ -22,11 +22,11 @@
 #include "gjklab/cli.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
-#include "gjklab/scene_audit.hpp"
-#include "gjklab/scene_file.hpp"
+#include "gjklab/simulation/scene_audit.hpp"
+#include "gjklab/simulation/scene_file.hpp"
 
 namespace fs = std::filesystem;
-using gjklab::cli::parse_scene;
+using gjklab::simulation::parse_scene;
 using gjklab::experiment::ConfigError;
 
 using gjklab::testing::run_cli;
@@ -127,8 +127,8 @@ TEST_CASE("simulate: the audit answers a step's pairs exactly beside the narrow 
   const auto cube = shape_of(shapes::box());
   world.add(scene::make_dynamic_body(cube, 1000, Quat::Identity(), Vec3(0, 0, 0.51)));
   world.add(scene::make_dynamic_body(cube, 1000, Quat::Identity(), Vec3(0.99, 0, 0.51)));
-  cli::SceneAudit audit(true);
-  cli::AuditRows rows;
+  simulation::SceneAudit audit(true);
+  experiment::SceneAuditRows rows;
   audit.before_step(world);
   world.step();
   audit.after_step(world, 1, rows);
@@ -202,11 +202,11 @@ random_rotation = true
 
 /// The scene built after `blocks` heap allocations of assorted sizes (kept alive meanwhile),
 /// stepped `frames` times.
-gjklab::cli::SceneSetup stepped_after_allocations(const std::string& text, int blocks, int frames) {
+gjklab::simulation::SceneSetup stepped_after_allocations(const std::string& text, int blocks, int frames) {
   std::vector<std::unique_ptr<char[]>> held;
   for (int k = 0; k < blocks; ++k)
     held.emplace_back(std::make_unique<char[]>(16 + (k * 37 * (blocks % 7 + 3)) % 9000));
-  gjklab::cli::SceneSetup s = parse_scene(text, "spheres.toml");
+  gjklab::simulation::SceneSetup s = parse_scene(text, "spheres.toml");
   for (int f = 0; f < frames; ++f)
     s.world->step();
   return s;

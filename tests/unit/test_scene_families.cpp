@@ -23,11 +23,11 @@
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/scene/body.hpp"
 #include "gjklab/scene/world.hpp"
-#include "gjklab/scene_file.hpp"
+#include "gjklab/simulation/scene_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace gjklab;
-using gjklab::cli::parse_scene;
+using gjklab::simulation::parse_scene;
 using gjklab::experiment::ConfigError;
 
 using gjklab::testing::run_cli;
@@ -111,7 +111,7 @@ TEST_CASE("scene physics: a ball and a capsule come to rest on the ground at the
 
 TEST_CASE("scene files: bodies from generated clouds, meshes and sphere-swept shapes",
           "[unit][scene]") {
-  const cli::SceneSetup s = parse_scene(R"([scene]
+  const simulation::SceneSetup s = parse_scene(R"([scene]
 seed = 3
 
 [[bodies]]
@@ -158,7 +158,7 @@ position = [0, 0, 12]
     CHECK(s.shape_names[i] == "ball_points");
   }
   CHECK(clouds.size() == 3);
-  const cli::SceneSetup again = parse_scene(s.text, data_source());
+  const simulation::SceneSetup again = parse_scene(s.text, data_source());
   CHECK(again.world->bodies()[1].shape->polytope.vertices()[0] ==
         bodies[1].shape->polytope.vertices()[0]);
   // The four test meshes in name order (cube, octahedron, tetrahedron, wedge), then again.
@@ -248,7 +248,7 @@ spacing = 0.6
 
 TEST_CASE("scene files: bodies from real objects, body i taking object i mod count",
           "[unit][scene][real_object]") {
-  const cli::SceneSetup s = parse_scene(R"([[bodies]]
+  const simulation::SceneSetup s = parse_scene(R"([[bodies]]
 shape = "real_object"
 objects = ["cow", "fandisk"]
 size = 0.8
@@ -300,7 +300,7 @@ position = [0, 0, 0.5]
        {"[narrow_phase]\nalgorithm = \"bullet-gjk\"\ndepth_algorithm = \"epa\"\n",
         "[narrow_phase]\nalgorithm = \"fcl-indep\"\n"}) {
     INFO(narrow);
-    const cli::SceneSetup s = parse_scene(stack + narrow, "peer.toml");
+    const simulation::SceneSetup s = parse_scene(stack + narrow, "peer.toml");
     REQUIRE(s.world->settings().query);
     CHECK_FALSE(s.world->settings().warm_start);
     double worst = 0;
@@ -339,9 +339,9 @@ position = [0, 0, 0.45]
 algorithm = "gjk-nesterov"
 )";
   // One iteration is too few for the accelerated GJK to converge: the step counts the stops.
-  const cli::SceneSetup limited =
+  const simulation::SceneSetup limited =
       parse_scene(ball_on_ground + "[narrow_phase.options]\nmax_iterations = 1\n", "opt.toml");
-  const cli::SceneSetup plain = parse_scene(ball_on_ground, "opt.toml");
+  const simulation::SceneSetup plain = parse_scene(ball_on_ground, "opt.toml");
   CHECK(limited.world->step().failed_queries > 0);
   CHECK(plain.world->step().failed_queries == 0);
   CHECK(error_of(ball_on_ground + "[narrow_phase.options]\nno_such_key = 1\n")

@@ -14,7 +14,7 @@
 #include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/cases/scene_stream.hpp"
-#include "gjklab/scene_file.hpp"
+#include "gjklab/simulation/scene_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace gjklab;
@@ -67,7 +67,7 @@ TEST_CASE("stream family: a scene's recorded queries become cases, as the scene 
 
   // The same scene stepped here, logging the same frames' queries: every recorded pair is
   // the two world hulls GJK saw, bit for bit, in the order the step queried them.
-  cli::SceneSetup s = cli::parse_scene(kScene, "source.toml");
+  simulation::SceneSetup s = simulation::parse_scene(kScene, "source.toml");
   std::vector<scene::QueryRecord> log;
   std::vector<int> scene_iterations;  // warm-started, as the scene ran them
   std::size_t warm_queries = 0;

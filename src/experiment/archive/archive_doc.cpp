@@ -11,12 +11,16 @@
 #include <vector>
 
 #include "archive_schema.hpp"
+#include "scene_schema.hpp"
 #include "gjklab/experiment/archive/archive.hpp"
 #include "hdf5_util.hpp"
 
 namespace gjklab::experiment {
 
 namespace {
+
+/// Groups of the scene archive are named "scene/GROUP" in the documents' markers.
+constexpr std::string_view kScenePrefix = "scene/";
 
 constexpr std::string_view kBeginMarker = "<!-- schema table: ";
 constexpr std::string_view kMarkerClose = " -->";
@@ -105,6 +109,13 @@ std::string enum_values(schema::EnumList<E...>) {
 }  // namespace
 
 std::string archive_schema_table(std::string_view group) {
+  if (group.starts_with(kScenePrefix)) {
+    const auto rows = scene_schema::rows(group.substr(kScenePrefix.size()));
+    if (!rows)
+      throw std::invalid_argument("no scene archive schema table '" + std::string(group) + "'");
+    return markdown_table({group == "scene/root" ? "attribute" : "dataset", "type", "meaning"},
+                          *rows);
+  }
   if (group == "enums") return enum_values(schema::ArchiveEnums{});
   if (group == "root")
     return markdown_table({"attribute", "type", "meaning"}, table_rows(archive_root_attributes()));

@@ -9,21 +9,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "gjklab/exact/hull_features.hpp"
-#include "gjklab/experiment/registry/certified.hpp"
-#include "gjklab/geometry/scalar_cloud.hpp"
-#include "gjklab/gjk/epa.hpp"
-#include "gjklab/gjk/gjk_boolean.hpp"
-#include "gjklab/gjk/gjk_distance.hpp"
-#include "gjklab/gjk/gjk_nesterov.hpp"
-#include "gjklab/gjk/subalgorithms.hpp"
-#include "gjklab/peers/sat.hpp"
-#ifdef GJKLAB_HAVE_FCL
-#include "gjklab/peers/fcl.hpp"
-#endif
-#ifdef GJKLAB_HAVE_BULLET
-#include "gjklab/peers/bullet.hpp"
-#endif
+#include "experiment/registry/bench_loops.hpp"
+#include "experiment/registry/queries.hpp"
 
 namespace gjklab::experiment {
 
@@ -66,7 +53,7 @@ Outcome from_distance(const DistanceResult& r) {
 
 namespace {
 
-Outcome from_penetration(const PenetrationResult& r, bool deepest_points);
+using namespace registry_parts;
 
 Outcome run_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean));
@@ -76,135 +63,6 @@ Outcome trace_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOpti
                        TraceRecorder& trace) {
   return from_boolean(gjk_intersect(a, b, o.gjk_boolean, trace));
 }
-
-// ---- the GJK queries in float and long double (AlgorithmOptions::precision) ---------------
-//
-// The same queries, run on the clouds rounded to T (ScalarCloud<T>); their answers are
-// converted to double for the records. Sphere-swept shapes: the radii are rounded to T too; the
-// distance variants and epa shift the cores' answer by them in double (gjk/swept.hpp), the
-// boolean walks the swept support map in T.
-
-/// A distance variant as a type whose query takes shapes of any precision, traced or not: the
-/// one core query from which the registry makes its plain, traced, sphere-swept,
-/// other-precision and benchmark forms (swept shapes: the query runs on the cores and its
-/// answer is shifted by the radii, see gjk/swept.hpp).
-template <class Sub>
-struct SubAlgorithmQuery {
-  template <class S, class Observer>
-  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
-    return gjk_distance_with<Sub>(a, b, o.gjk_distance, observer);
-  }
-};
-struct NesterovQuery {
-  template <class S, class Observer>
-  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
-    return gjk_nesterov(a, b, o.gjk_nesterov, observer);
-  }
-};
-struct PolyakQuery {
-  template <class S, class Observer>
-  static auto run(const S& a, const S& b, const AlgorithmOptions& o, Observer&& observer) {
-    return gjk_polyak(a, b, o.gjk_distance, observer);
-  }
-};
-
-template <class Prepared, class Make>
-std::shared_ptr<const Prepared> prepared(const Polytope& shape, Make&& make);
-
-/// The cloud rounded to T, made once per polytope and thread (see prepared() below), so that
-/// repeated and timed queries on a shape do not pay for the conversion.
-template <class T>
-std::shared_ptr<const ScalarCloud<T>> rounded(const Polytope& shape) {
-  return prepared<ScalarCloud<T>>(shape, [](const Polytope& p) {
-    return std::make_shared<const ScalarCloud<T>>(p.vertices());
-  });
-}
-
-/// The radii rounded to T (and back to double, exactly).
-template <class T>
-SweptRadii rounded_radii(const SweptRadii& r) {
-  return {static_cast<double>(static_cast<T>(r.a)), static_cast<double>(static_cast<T>(r.b))};
-}
-
-template <class Query, class T>
-Outcome distance_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                    const AlgorithmOptions& o, TraceRecorder* trace) {
-  const auto pa = rounded<T>(a), pb = rounded<T>(b);
-  const ScalarCloud<T>&ca = *pa, &cb = *pb;
-  DistanceResult d = trace ? to_double(Query::run(ca, cb, o, *trace))
-                           : to_double(Query::run(ca, cb, o, NoTrace{}));
-  if (r.any()) d = swept_distance(d, rounded_radii<T>(r));
-  return from_distance(d);
-}
-
-template <class T>
-Outcome gjk_bool_in(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                    const AlgorithmOptions& o, TraceRecorder* trace) {
-  const auto pa = rounded<T>(a), pb = rounded<T>(b);
-  const ScalarCloud<T>&ca = *pa, &cb = *pb;
-  auto query = [&](const auto& sa, const auto& sb) {
-    return trace ? gjk_intersect(sa, sb, o.gjk_boolean, *trace)
-                 : gjk_intersect(sa, sb, o.gjk_boolean);
-  };
-  if (!r.any()) return from_boolean(query(ca, cb));
-  using Swept = SphereSwept<ScalarCloud<T>>;
-  return from_boolean(query(Swept(ca, static_cast<T>(r.a)), Swept(cb, static_cast<T>(r.b))));
-}
-
-template <class T>
-Outcome epa_in(const Polytope& a, const Polytope& b, const SweptRadii& r, const AlgorithmOptions& o,
-               TraceRecorder*) {
-  thread_local EpaPolytopeT<T> workspace;  // buffers reused across queries on this thread
-  const auto pa = rounded<T>(a), pb = rounded<T>(b);
-  const ScalarCloud<T>&ca = *pa, &cb = *pb;
-  const EpaResult core = to_double(gjk_epa(ca, cb, o.gjk_distance, o.epa, workspace));
-  Outcome out =
-      from_penetration(r.any() ? swept_penetration(core, rounded_radii<T>(r)) : core, true);
-  out.iterations = core.gjk_iterations + core.iterations;  // GJK's, then EPA's
-  return out;
-}
-
-using PrecisionRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
-                                 const AlgorithmOptions&, TraceRecorder*);
-
-/// The entry's run_at_precision: Run<float> or Run<long double> by options.precision.
-template <template <class> class Run>
-Outcome at_precision(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                     const AlgorithmOptions& o, TraceRecorder* trace) {
-  switch (o.precision) {
-    case ScalarPrecision::single_float:
-      return Run<float>::run(a, b, r, o, trace);
-    case ScalarPrecision::long_double:
-      return Run<long double>::run(a, b, r, o, trace);
-    case ScalarPrecision::double_float:
-      break;
-  }
-  throw std::logic_error("run_at_precision called for double");
-}
-template <class Query>
-struct DistanceIn {
-  template <class T>
-  struct At {
-    static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                       const AlgorithmOptions& o, TraceRecorder* trace) {
-      return distance_in<Query, T>(a, b, r, o, trace);
-    }
-  };
-};
-template <class T>
-struct GjkBoolIn {
-  static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                     const AlgorithmOptions& o, TraceRecorder* trace) {
-    return gjk_bool_in<T>(a, b, r, o, trace);
-  }
-};
-template <class T>
-struct EpaIn {
-  static Outcome run(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                     const AlgorithmOptions& o, TraceRecorder* trace) {
-    return epa_in<T>(a, b, r, o, trace);
-  }
-};
 
 template <class Core>
 Outcome run_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
@@ -226,78 +84,12 @@ Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRa
   return from_distance(swept_distance(Core::run(a, b, o, trace), r));
 }
 
-/// A penetration answer: distance and closest points for separated pairs, depth and normal
-/// (and the deepest points, when the algorithm reports them) for intersecting ones.
-Outcome from_penetration(const PenetrationResult& r, bool deepest_points) {
-  Outcome o;
-  o.intersect = r.intersect;
-  o.distance = r.intersect ? 0.0 : r.distance;
-  if (r.intersect) {
-    o.depth = r.depth;
-    o.normal = r.normal;
-  }
-  if (!r.intersect || deepest_points) {
-    o.witness_a = r.witness_a;
-    o.witness_b = r.witness_b;
-  }
-  o.iterations = r.iterations;
-  o.support_calls = r.support_calls;
-  o.termination = r.termination;
-  return o;
-}
-
 Outcome run_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
   thread_local EpaPolytope workspace;  // buffers reused across queries on this thread
   const EpaResult r = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
   Outcome out = from_penetration(r, true);
   out.iterations = r.gjk_iterations + r.iterations;  // GJK's, then EPA's
   return out;
-}
-
-/// A peer's depth answer (libccd's penetration queries, SAT): the boolean, and the depth and
-/// normal where it says intersecting; no distance. `iterations` as the peer counts them.
-template <class DepthResult>
-Outcome from_depth_answer(const DepthResult& r, int iterations) {
-  Outcome o;
-  o.intersect = r.intersect;
-  if (r.intersect) {
-    o.depth = r.depth;
-    o.normal = r.normal;
-  }
-  o.iterations = iterations;
-  o.support_calls = r.support_calls;
-  o.termination = r.termination;
-  return o;
-}
-
-// Shapes prepared for an algorithm (exact hull features, a library's own shape object) are
-// built once per polytope and thread and reused, keyed by Polytope::id(): a query on the same
-// polytope (or a copy) finds its preparation in constant time, so a benchmark that cycles over
-// many shapes times the queries and not the preparation. The experiment driver runs every
-// algorithm once before timing it. The cache forgets everything when it reaches kEntries, which
-// bounds its memory in long runs (each case brings new polytopes).
-template <class Prepared, class Make>
-std::shared_ptr<const Prepared> prepared(const Polytope& shape, Make&& make) {
-  constexpr std::size_t kEntries = 1024;
-  thread_local std::unordered_map<std::uint64_t, std::shared_ptr<const Prepared>> cache;
-  if (const auto found = cache.find(shape.id()); found != cache.end()) return found->second;
-  if (cache.size() >= kEntries) cache.clear();
-  auto made = make(shape);
-  cache.emplace(shape.id(), made);
-  return made;
-}
-
-/// The exact hull features of a cloud (shared by SAT and FCL).
-std::shared_ptr<const exact::HullFeatures> hull_of(const Polytope& shape) {
-  return prepared<exact::HullFeatures>(shape, [](const Polytope& p) {
-    return std::make_shared<const exact::HullFeatures>(exact::hull_features(p.vertices()));
-  });
-}
-
-std::shared_ptr<const peers::SatShape> sat_shape(const Polytope& shape) {
-  return prepared<peers::SatShape>(shape, [](const Polytope& p) {
-    return std::make_shared<const peers::SatShape>(*hull_of(p));
-  });
 }
 
 Outcome run_sat(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
@@ -308,12 +100,6 @@ Outcome run_sat(const Polytope& a, const Polytope& b, const AlgorithmOptions& o)
 }
 
 #ifdef GJKLAB_HAVE_FCL
-std::shared_ptr<const peers::FclShape> fcl_shape(const Polytope& shape) {
-  return prepared<peers::FclShape>(shape, [](const Polytope& p) {
-    return std::make_shared<const peers::FclShape>(*hull_of(p));
-  });
-}
-
 Outcome run_fcl(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
                 peers::FclSolver solver) {
   const auto fa = fcl_shape(a);
@@ -329,11 +115,6 @@ Outcome run_fcl_indep(const Polytope& a, const Polytope& b, const AlgorithmOptio
 #endif
 
 #ifdef GJKLAB_HAVE_BULLET
-std::shared_ptr<const peers::BulletShape> bullet_shape(const Polytope& shape) {
-  return prepared<peers::BulletShape>(
-      shape, [](const Polytope& p) { return std::make_shared<const peers::BulletShape>(p); });
-}
-
 template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
 Outcome run_bullet(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
   const auto ba = bullet_shape(a);
@@ -368,18 +149,6 @@ Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
   return out;
 }
 
-/// A libccd adapter: the two polytopes, the options and the radii it sweeps them by; it answers
-/// a boolean (BooleanResult) or a penetration (LibccdPenetration).
-template <class Result>
-using LibccdQuery = Result (*)(const Polytope&, const Polytope&, const peers::LibccdOptions&,
-                               const SweptRadii&);
-
-/// Whether the adapter answers a penetration (with a depth) rather than a boolean.
-template <class Result>
-constexpr bool reports_depth(LibccdQuery<Result>) {
-  return std::is_same_v<Result, peers::LibccdPenetration>;
-}
-
 /// The run of a libccd adapter (it takes the radii itself).
 template <auto Query>
 Outcome run_libccd(const Polytope& a, const Polytope& b, const SweptRadii& r,
@@ -400,15 +169,6 @@ Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
   out.depth = answer.depth;
   out.exact = std::move(answer);
   return out;
-}
-
-/// The oracle options of `gjk-certified`: a depth where one is asked (o.oracle.depth, as for
-/// `exact`), certificates on, no hull counts.
-exact::OracleOptions certified_query_options(const AlgorithmOptions& o) {
-  exact::OracleOptions options = o.oracle;
-  options.certificates = true;
-  options.hull_vertices = false;
-  return options;
 }
 
 /// The direction in which B must move by the depth: the certified face normal; for swept
@@ -442,163 +202,6 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
   out.exact = std::move(c.answer);
   return out;
 }
-
-// ---- benchmark loops (see algorithms.hpp) ------------------------------------------------
-
-/// Adds one query to the tallies; `distance` is added to the distance sum (0 when the answer
-/// has none, or when the shapes intersect, as the registry's Outcome reports it).
-void count_query(BenchTally& t, long long iterations, long long support_calls, bool intersect,
-                 double distance = 0) {
-  ++t.queries;
-  t.iterations += iterations;
-  t.support_calls += support_calls;
-  t.intersections += intersect;
-  t.distance_sum += distance;
-}
-
-// The same tallies as run_bench_loop_via_registry takes from each algorithm's Outcome.
-void tally(BenchTally& t, const BooleanResult& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect);
-}
-template <class T>
-void tally(BenchTally& t, const DistanceResultT<T>& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect, static_cast<double>(r.distance));
-}
-void tally(BenchTally& t, const PenetrationResult& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect, r.intersect ? 0.0 : r.distance);
-}
-template <class T>
-void tally(BenchTally& t, const EpaResultT<T>& r) {
-  // As run_epa: GJK's iterations, then EPA's.
-  count_query(t, r.gjk_iterations + r.iterations, r.support_calls, r.intersect,
-              r.intersect ? 0.0 : static_cast<double>(r.distance));
-}
-void tally(BenchTally& t, const peers::LibccdPenetration& r) {
-  count_query(t, r.iterations, r.support_calls, r.intersect);
-}
-void tally(BenchTally& t, const CertifiedAnswer& r) {
-  count_query(t, r.iterations, r.support_calls, r.answer.intersect,
-              r.answer.intersect ? 0.0 : r.answer.distance);
-}
-void tally(BenchTally& t, const peers::SatResult& r) {
-  count_query(t, r.axes_tested, r.support_calls, r.intersect);
-}
-
-/// One loop shape for every algorithm: `query` is called directly (and inlined where the
-/// compiler can see it), once per pair and repetition.
-template <class Query>
-BenchTally bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
-  BenchTally t;
-  for (int r = 0; r < repetitions; ++r)
-    for (const BenchPair& p : pairs)
-      tally(t, query(*p.a, *p.b));
-  return t;
-}
-
-template <class Prepare, class Query>
-BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
-                               Query&& query);
-
-/// The loop of a GJK query in float or long double: the shapes rounded to T are prepared once
-/// per polytope (rounded<T>, as the peers' prepared shapes), so the loop times the queries.
-template <class T, class Query>
-BenchTally rounded_bench_loop(std::span<const BenchPair> pairs, int repetitions, Query&& query) {
-  return prepared_bench_loop(pairs, repetitions, rounded<T>, query);
-}
-
-/// A GJK query's loop in the precision of the options (`query` takes shapes of any scalar).
-template <class Query>
-BenchTally gjk_bench_loop(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps,
-                          Query&& query) {
-  switch (o.precision) {
-    case ScalarPrecision::single_float:
-      return rounded_bench_loop<float>(pairs, reps, query);
-    case ScalarPrecision::long_double:
-      return rounded_bench_loop<long double>(pairs, reps, query);
-    case ScalarPrecision::double_float:
-      break;
-  }
-  return bench_loop(pairs, reps, query);
-}
-
-BenchTally bench_gjk_bool(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    return gjk_intersect(a, b, o.gjk_boolean);
-  });
-}
-
-/// The loop of a GJK distance variant, from its core query.
-template <class Core>
-BenchTally bench_distance(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(
-      pairs, o, reps, [&](const auto& a, const auto& b) { return Core::run(a, b, o, NoTrace{}); });
-}
-
-BenchTally bench_epa(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return gjk_bench_loop(pairs, o, reps, [&](const auto& a, const auto& b) {
-    // Buffers reused across the batch's queries, as run_epa's per thread (one per precision).
-    thread_local EpaPolytopeT<shape_scalar_t<std::remove_cvref_t<decltype(a)>>> workspace;
-    return gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
-  });
-}
-
-/// The bench loop of a libccd adapter (the bench's shapes are polytopes: radii 0).
-template <auto Query>
-BenchTally bench_libccd(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return Query(a, b, o.libccd, SweptRadii{});
-  });
-}
-
-/// The loop of an algorithm that queries shapes prepared for it (`Prepare`: Polytope → shared
-/// pointer to the prepared shape): each pair's prepared shapes are looked up once per call,
-/// before its repetitions, so the timed queries call the library directly, as the other loops.
-template <class Prepare, class Query>
-BenchTally prepared_bench_loop(std::span<const BenchPair> pairs, int repetitions, Prepare&& prepare,
-                               Query&& query) {
-  using Shape = decltype(prepare(std::declval<const Polytope&>()));
-  std::vector<std::pair<Shape, Shape>> shapes;
-  shapes.reserve(pairs.size());
-  for (const BenchPair& p : pairs)
-    shapes.emplace_back(prepare(*p.a), prepare(*p.b));
-  BenchTally t;
-  for (int r = 0; r < repetitions; ++r)
-    for (const auto& [a, b] : shapes)
-      tally(t, query(*a, *b));
-  return t;
-}
-
-BenchTally bench_gjk_certified(std::span<const BenchPair> pairs, const AlgorithmOptions& o,
-                               int reps) {
-  const exact::OracleOptions options = certified_query_options(o);
-  return bench_loop(pairs, reps, [&](const Polytope& a, const Polytope& b) {
-    return solve_certified(a, b, SweptRadii{}, options);
-  });
-}
-
-BenchTally bench_sat(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return prepared_bench_loop(pairs, reps, sat_shape,
-                             [&](const peers::SatShape& a, const peers::SatShape& b) {
-                               return peers::sat_query(a, b, o.sat);
-                             });
-}
-
-#ifdef GJKLAB_HAVE_FCL
-template <peers::FclSolver Solver>
-BenchTally bench_fcl(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
-  return prepared_bench_loop(pairs, reps, fcl_shape,
-                             [&](const peers::FclShape& a, const peers::FclShape& b) {
-                               return peers::fcl_query(a, b, Solver, o.fcl);
-                             });
-}
-#endif
-
-#ifdef GJKLAB_HAVE_BULLET
-template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
-BenchTally bench_bullet(std::span<const BenchPair> pairs, const AlgorithmOptions&, int reps) {
-  return prepared_bench_loop(pairs, reps, bullet_shape, Query);
-}
-#endif
 
 using SweptRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
                              const AlgorithmOptions&);

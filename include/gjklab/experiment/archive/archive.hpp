@@ -118,7 +118,8 @@ std::vector<ArchiveColumn> archive_columns(std::string_view group);
 std::vector<ArchiveColumn> archive_root_attributes();
 
 /// The Markdown table results/README.md shows for a group of archive_columns, for the root
-/// attributes ("root"), or the list of every archive enum's values ("enums"). Throws
+/// attributes ("root"), or the list of every archive enum's values ("enums"); "scene/GROUP" for
+/// a group of the scene archive (docs/scenes.md, scene_archive.hpp). Throws
 /// std::invalid_argument for another name.
 std::string archive_schema_table(std::string_view group);
 /// `document` with every table between the lines "<!-- schema table: GROUP -->" and

@@ -10,7 +10,7 @@
 
 #include "gjklab/scene/world.hpp"
 
-namespace gjklab::cli {
+namespace gjklab::simulation {
 
 /// A scene ready to simulate: the world with every body placed, and how to record it.
 struct SceneSetup {
@@ -42,4 +42,4 @@ SceneSetup load_scene(const std::string& path);
 /// The same from text; `source` names it in errors.
 SceneSetup parse_scene(const std::string& text, const std::string& source);
 
-}  // namespace gjklab::cli
+}  // namespace gjklab::simulation

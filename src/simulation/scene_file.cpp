@@ -1,4 +1,6 @@
-#include "gjklab/scene_file.hpp"
+#include "gjklab/simulation/scene_file.hpp"
+
+#include "scene_toml.hpp"
 
 #include <toml++/toml.h>
 #include <algorithm>
@@ -16,7 +18,7 @@
 #include "gjklab/experiment/cases/real_objects.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
-namespace gjklab::cli {
+namespace gjklab::simulation {
 
 namespace {
 
@@ -39,134 +41,7 @@ const std::string& body_shapes() {
   return names;
 }
 
-int line_of(const toml::source_region& r) {
-  return r.begin.line > 0 ? static_cast<int>(r.begin.line) : 1;
-}
-
-/// One table being read; every problem names the file, the value's line and the dotted key.
-class Table {
- public:
-  Table(const std::string& file, const toml::table& t, std::string path)
-      : file_(file), t_(t), path_(std::move(path)) {}
-
-  std::string key(std::string_view k) const {
-    return path_.empty() ? std::string(k) : path_ + "." + std::string(k);
-  }
-  int line() const { return line_of(t_.source()); }
-  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
-    const toml::node* n = t_.get(k);
-    throw ConfigError(file_, n ? line_of(n->source()) : line(), key(k), problem);
-  }
-  void allow_only(std::initializer_list<std::string_view> allowed) const {
-    for (auto&& [k, v] : t_) {
-      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
-      std::string list;
-      for (auto a : allowed)
-        list += (list.empty() ? "" : ", ") + std::string(a);
-      throw ConfigError(file_, line_of(k.source()), key(k.str()), "unknown key; valid: " + list);
-    }
-  }
-  bool has(std::string_view k) const { return t_.get(k) != nullptr; }
-
-  double number(std::string_view k, double fallback, double lo, double hi) const {
-    const toml::node* n = t_.get(k);
-    if (!n) return fallback;
-    double v;
-    if (auto i = n->value_exact<std::int64_t>())
-      v = static_cast<double>(*i);
-    else if (auto d = n->value_exact<double>())
-      v = *d;
-    else
-      fail(k, "expected a number");
-    if (!std::isfinite(v) || v < lo || v > hi)
-      fail(k, "must be finite and in [" + fmt(lo) + ", " + fmt(hi) + "], not " + fmt(v));
-    return v;
-  }
-  std::int64_t integer(std::string_view k, std::int64_t fallback, std::int64_t lo,
-                       std::int64_t hi) const {
-    const toml::node* n = t_.get(k);
-    if (!n) return fallback;
-    const auto i = n->value_exact<std::int64_t>();
-    if (!i) fail(k, "expected an integer");
-    if (*i < lo || *i > hi)
-      fail(k, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], not " +
-                  std::to_string(*i));
-    return *i;
-  }
-  bool boolean(std::string_view k, bool fallback) const {
-    const toml::node* n = t_.get(k);
-    if (!n) return fallback;
-    const auto b = n->value_exact<bool>();
-    if (!b) fail(k, "expected true or false");
-    return *b;
-  }
-  std::string string(std::string_view k, const std::string& fallback) const {
-    const toml::node* n = t_.get(k);
-    if (!n) return fallback;
-    const auto s = n->value_exact<std::string>();
-    if (!s) fail(k, "expected a string");
-    return *s;
-  }
-  /// An array of `size` finite numbers.
-  std::vector<double> numbers(std::string_view k, std::size_t size) const {
-    const toml::array* a = t_.get(k) ? t_.get(k)->as_array() : nullptr;
-    if (!a) fail(k, "expected an array of " + std::to_string(size) + " numbers");
-    return numbers_of(*a, k, size);
-  }
-  std::vector<double> numbers_of(const toml::array& a, std::string_view k, std::size_t size) const {
-    if (a.size() != size) fail(k, "expected " + std::to_string(size) + " numbers");
-    std::vector<double> out;
-    for (const toml::node& n : a) {
-      if (auto i = n.value_exact<std::int64_t>())
-        out.push_back(static_cast<double>(*i));
-      else if (auto d = n.value_exact<double>())
-        out.push_back(*d);
-      else
-        fail(k, "expected numbers");
-      if (!std::isfinite(out.back())) fail(k, "every number must be finite");
-    }
-    return out;
-  }
-  Vec3 vec3(std::string_view k, const Vec3& fallback) const {
-    if (!has(k)) return fallback;
-    const auto v = numbers(k, 3);
-    return Vec3(v[0], v[1], v[2]);
-  }
-  /// A sub-table (absent: an empty one).
-  Table child(std::string_view k) const {
-    const toml::node* n = t_.get(k);
-    if (!n) return Table(file_, empty_, key(k));
-    if (!n->is_table()) fail(k, "expected a table");
-    return Table(file_, *n->as_table(), key(k));
-  }
-  /// The tables of an array of tables ([[k]]).
-  std::vector<Table> tables(std::string_view k) const {
-    std::vector<Table> out;
-    const toml::node* n = t_.get(k);
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    if (!a || !a->is_array_of_tables())
-      fail(k, "expected an array of tables [[" + std::string(k) + "]]");
-    for (std::size_t i = 0; i < a->size(); ++i)
-      out.emplace_back(file_, *a->get(i)->as_table(), key(k) + "[" + std::to_string(i) + "]");
-    return out;
-  }
-  const toml::table& raw() const { return t_; }
-  const std::string& file() const { return file_; }
-
- private:
-  static std::string fmt(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
-  static inline const toml::table empty_{};
-  const std::string& file_;
-  const toml::table& t_;
-  std::string path_;
-};
-
-Quat rotation_of(const Table& t) {
+Quat rotation_of(const SceneTable& t) {
   if (!t.has("rotation")) return Quat::Identity();
   const auto q = t.numbers("rotation", 4);
   const Quat r(q[0], q[1], q[2], q[3]);
@@ -175,7 +50,7 @@ Quat rotation_of(const Table& t) {
 }
 
 /// Scale factors of a unit demo shape: one number (uniform) or three.
-Vec3 size_of(const Table& t) {
+Vec3 size_of(const SceneTable& t) {
   if (!t.has("size")) return Vec3::Ones();
   Vec3 s;
   if (t.raw().get("size")->is_array()) {
@@ -195,7 +70,7 @@ std::vector<Vec3> scaled(const Polytope& p, const Vec3& s) {
   return out;
 }
 
-std::vector<Vec3> hull_points(const Table& t) {
+std::vector<Vec3> hull_points(const SceneTable& t) {
   const toml::node* n = t.raw().get("points");
   const toml::array* a = n ? n->as_array() : nullptr;
   if (!a || a->empty()) t.fail("points", "expected an array of [x, y, z] points");
@@ -210,7 +85,7 @@ std::vector<Vec3> hull_points(const Table& t) {
 }
 
 /// The cloud of a body or static shape, or a ConfigError naming the shape key.
-std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
+std::vector<Vec3> cloud_of(const SceneTable& t, const std::string& shape) {
   const Vec3 s = size_of(t);
   if (shape == "box") return scaled(shapes::box(), s);
   if (shape == "hull") return hull_points(t);
@@ -236,7 +111,7 @@ std::vector<Vec3> cloud_of(const Table& t, const std::string& shape) {
 
 /// A generated cloud of the family shape: the experiments' unit cloud (within [-1, 1] of its
 /// centre), halved so that `size` is its extent as for the demo shapes, and scaled by size.
-std::vector<Vec3> family_cloud_points(const Table& t, const experiment::ShapeGenerator& f,
+std::vector<Vec3> family_cloud_points(const SceneTable& t, const experiment::ShapeGenerator& f,
                                       void* gsl_rng) {
   const int n = static_cast<int>(t.integer("vertices", 32, 1, 100000));
   const double aspect = t.number("aspect", 10, 1, 1e12);
@@ -249,7 +124,7 @@ std::vector<Vec3> family_cloud_points(const Table& t, const experiment::ShapeGen
 
 /// The files a `mesh` group or static names (`path`: one .off/.obj/.ply/.stl file or a folder
 /// of them, in name order), relative to the scene file's folder.
-std::vector<std::vector<Vec3>> read_meshes(const Table& t) {
+std::vector<std::vector<Vec3>> read_meshes(const SceneTable& t) {
   const std::string path = t.string("path", "");
   if (path.empty()) t.fail("path", "missing (shape = \"mesh\" needs a mesh file or a folder)");
   std::filesystem::path resolved(path);
@@ -277,7 +152,7 @@ std::vector<std::vector<Vec3>> read_meshes(const Table& t) {
 /// The hulls of a `real_object` group (`objects`: "all" or a list of names, as in experiments;
 /// body i takes object i mod count). A real object has unit radius: halved and scaled by
 /// `size`, its extent is `size` as for the demo shapes.
-std::vector<std::vector<Vec3>> read_real_objects(const Table& t) {
+std::vector<std::vector<Vec3>> read_real_objects(const SceneTable& t) {
   const toml::node* node = t.raw().get("objects");
   if (!node)
     t.fail("objects", "missing (shape = \"real_object\" needs \"all\" or a list of names)");
@@ -309,7 +184,7 @@ std::vector<std::vector<Vec3>> read_real_objects(const Table& t) {
 
 /// The swept radius of a group (length units): `radius`, by default 0.5 for a ball and 0.25
 /// for a capsule (the demo shapes' half size and quarter size), 0 otherwise (no sweep).
-double swept_radius_of(const Table& t, const std::string& shape) {
+double swept_radius_of(const SceneTable& t, const std::string& shape) {
   const double fallback = shape == "ball" ? 0.5 : shape == "capsule" ? 0.25 : 0.0;
   const double r = t.number("radius", fallback, 0, 1e12);
   if ((shape == "ball" || shape == "capsule") && !(r > 0))
@@ -320,7 +195,7 @@ double swept_radius_of(const Table& t, const std::string& shape) {
 /// Shapes by their points and swept radius, so that bodies of one cloud share one hull.
 class ShapeCache {
  public:
-  std::shared_ptr<const scene::ConvexShape> get(const Table& t, std::string_view key,
+  std::shared_ptr<const scene::ConvexShape> get(const SceneTable& t, std::string_view key,
                                                 std::vector<Vec3> cloud, double radius = 0) {
     std::ostringstream k;
     k.precision(17);
@@ -347,7 +222,7 @@ class ShapeCache {
 /// `[narrow_phase.depth_options]`), through the registry's own option rows: numbers, booleans,
 /// names and [x, y, z] directions; a key the algorithm does not take, or a bad value, fails
 /// with the key's line.
-experiment::AlgorithmOptions options_of(const Table& t, const std::string& algorithm) {
+experiment::AlgorithmOptions options_of(const SceneTable& t, const std::string& algorithm) {
   experiment::AlgorithmSpec spec{algorithm, algorithm, {}};
   for (auto&& [k, v] : t.raw()) {
     std::string text;
@@ -378,7 +253,7 @@ experiment::AlgorithmOptions options_of(const Table& t, const std::string& algor
 /// A registry algorithm that answers a distance, as the scene's narrow-phase query: cold, on the
 /// world hulls, with `options`. Where it reports no closest points, gjk-johnson's are used (the
 /// contact needs a point and a normal).
-scene::NarrowQuery registry_query(const Table& n, const std::string& name,
+scene::NarrowQuery registry_query(const SceneTable& n, const std::string& name,
                                   const experiment::AlgorithmOptions& options) {
   const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
   if (!info)
@@ -411,7 +286,7 @@ scene::NarrowQuery registry_query(const Table& n, const std::string& name,
 /// depth, normal and the midpoint of its deepest points (where it reports none, A's support
 /// point along the normal moved back by half the depth); none for a pair it calls separated
 /// or without a depth.
-scene::DepthQuery registry_depth_query(const Table& n, const std::string& name,
+scene::DepthQuery registry_depth_query(const SceneTable& n, const std::string& name,
                                        const experiment::AlgorithmOptions& options) {
   const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
   if (!info)
@@ -431,8 +306,8 @@ scene::DepthQuery registry_depth_query(const Table& n, const std::string& name,
       }};
 }
 
-void read_settings(const Table& root, scene::WorldSettings& s) {
-  const Table p = root.child("physics");
+void read_settings(const SceneTable& root, scene::WorldSettings& s) {
+  const SceneTable p = root.child("physics");
   p.allow_only({"gravity", "dt", "solver_iterations", "position_iterations", "contact_margin",
                 "slop", "baumgarte", "restitution_threshold"});
   s.gravity = p.vec3("gravity", s.gravity);
@@ -446,7 +321,7 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.baumgarte = p.number("baumgarte", s.baumgarte, 0, 1);
   s.restitution_threshold = p.number("restitution_threshold", s.restitution_threshold, 0, 1e12);
 
-  const Table b = root.child("broad_phase");
+  const SceneTable b = root.child("broad_phase");
   b.allow_only({"kind", "grid_cell_size"});
   const std::string kind = b.string("kind", std::string(to_string(s.broad_phase)));
   const auto k = scene::broad_phase_from_string(kind);
@@ -456,7 +331,7 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
   s.broad_phase = *k;
   s.grid_cell_size = b.number("grid_cell_size", 0, 0, 1e12);
 
-  const Table n = root.child("narrow_phase");
+  const SceneTable n = root.child("narrow_phase");
   n.allow_only({"algorithm", "depth_algorithm", "options", "depth_options", "warm_start",
                 "measure_cold", "max_iterations", "threads"});
   const std::string name = n.string("algorithm", "gjk-johnson");
@@ -488,7 +363,7 @@ void read_settings(const Table& root, scene::WorldSettings& s) {
 /// A funnel of `segments` static slabs: each a convex hull of 8 points between the cone of
 /// inner radius bottom_radius (z = 0) … top_radius (z = height) and the same cone moved out by
 /// `thickness` (length units), centred on `position`.
-std::vector<std::vector<Vec3>> funnel_panels(const Table& t) {
+std::vector<std::vector<Vec3>> funnel_panels(const SceneTable& t) {
   const double r0 = t.number("bottom_radius", 1, 0, 1e12);
   const double r1 = t.number("top_radius", 3, 0, 1e12);
   const double h = t.number("height", 3, 1e-9, 1e12);
@@ -509,8 +384,8 @@ std::vector<std::vector<Vec3>> funnel_panels(const Table& t) {
   return out;
 }
 
-void add_statics(const Table& root, SceneSetup& s, ShapeCache& shapes) {
-  for (const Table& t : root.tables("static")) {
+void add_statics(const SceneTable& root, SceneSetup& s, ShapeCache& shapes) {
+  for (const SceneTable& t : root.tables("static")) {
     t.allow_only({"shape", "size", "points", "path", "position", "rotation", "friction",
                   "restitution", "bottom_radius", "top_radius", "height", "thickness", "segments"});
     const std::string shape = t.string("shape", "");
@@ -556,7 +431,7 @@ struct Placed {
 };
 
 /// The box of a `random` placement: `region` = [[xmin, ymin, zmin], [xmax, ymax, zmax]].
-std::pair<Vec3, Vec3> random_region(const Table& t) {
+std::pair<Vec3, Vec3> random_region(const SceneTable& t) {
   const toml::node* r = t.raw().get("region");
   const toml::array* a = r ? r->as_array() : nullptr;
   if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array())
@@ -571,7 +446,7 @@ std::pair<Vec3, Vec3> random_region(const Table& t) {
 
 /// A centre in [lo, hi] whose ball of `radius` overlaps no placed body's, drawn uniformly; a
 /// ConfigError naming body i of count when kPlacementAttempts draws all overlap.
-Vec3 free_centre(const Table& t, const std::pair<Vec3, Vec3>& region, double radius,
+Vec3 free_centre(const SceneTable& t, const std::pair<Vec3, Vec3>& region, double radius,
                  const std::vector<Placed>& placed, std::mt19937_64& rng, std::int64_t i,
                  std::int64_t count) {
   std::uniform_real_distribution<double> u(0, 1);
@@ -596,11 +471,11 @@ Vec3 ordered_centre(bool stack, const Vec3& origin, double spacing, std::int64_t
                                  static_cast<double>(layer));
 }
 
-void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt19937_64& rng) {
+void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::mt19937_64& rng) {
   std::vector<Placed> placed;
   std::vector<double> sizes;
   std::size_t group = 0;
-  for (const Table& t : root.tables("bodies")) {
+  for (const SceneTable& t : root.tables("bodies")) {
     t.allow_only({"shape", "size", "vertices", "points", "path", "objects", "radius", "aspect",
                   "count", "density", "friction", "restitution", "placement", "position", "spacing",
                   "row", "region", "random_rotation", "velocity"});
@@ -667,19 +542,13 @@ void add_bodies(const Table& root, SceneSetup& s, ShapeCache& shapes, std::mt199
 }  // namespace
 
 SceneSetup parse_scene(const std::string& text, const std::string& source) {
-  toml::table doc;
-  try {
-    doc = toml::parse(std::string_view(text), std::string_view(source));
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(source, line_of(e.source()), "",
-                      "TOML syntax error: " + std::string(e.description()));
-  }
-  const Table root(source, doc, "");
+  const toml::table doc = experiment::parse_toml(text, source);
+  const SceneTable root(source, doc, "");
   root.allow_only(
       {"scene", "physics", "broad_phase", "narrow_phase", "oracle", "static", "bodies"});
   SceneSetup s;
   s.text = text;
-  const Table sc = root.child("scene");
+  const SceneTable sc = root.child("scene");
   sc.allow_only({"name", "seed", "frames", "pose_every", "contacts_every", "compare_broad_phases",
                  "queries_every"});
   s.name = sc.string("name", "scene");
@@ -689,7 +558,7 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
   s.contacts_every = sc.integer("contacts_every", 10, 1, kMaxFrames);
   s.compare_broad_phases = sc.boolean("compare_broad_phases", false);
   s.queries_every = sc.integer("queries_every", 0, 0, kMaxFrames);
-  const Table oracle = root.child("oracle");
+  const SceneTable oracle = root.child("oracle");
   oracle.allow_only({"audit_every", "depth"});
   s.audit_every = oracle.integer("audit_every", 0, 0, kMaxFrames);
   s.audit_depth = oracle.boolean("depth", false);
@@ -711,4 +580,4 @@ SceneSetup load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-}  // namespace gjklab::cli
+}  // namespace gjklab::simulation

@@ -1,4 +1,4 @@
-#include "gjklab/scene_audit.hpp"
+#include "gjklab/simulation/scene_audit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "gjklab/experiment/registry/certified.hpp"
 #include "gjklab/scene/broadphase.hpp"
 
-namespace gjklab::cli {
+namespace gjklab::simulation {
 
 namespace {
 
@@ -38,7 +38,8 @@ void SceneAudit::before_step(const scene::World& w) {
   }
 }
 
-void SceneAudit::after_step(const scene::World& w, std::int64_t frame, AuditRows& rows) {
+void SceneAudit::after_step(const scene::World& w, std::int64_t frame,
+                            experiment::SceneAuditRows& rows) {
   // The narrow phase's answer per pair: its deepest contact point.
   std::unordered_map<std::uint64_t, double> deepest;
   for (const scene::Contact& c : w.contacts()) {
@@ -66,4 +67,4 @@ void SceneAudit::after_step(const scene::World& w, std::int64_t frame, AuditRows
   hulls_.clear();
 }
 
-}  // namespace gjklab::cli
+}  // namespace gjklab::simulation

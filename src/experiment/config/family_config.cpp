@@ -1,0 +1,380 @@
+// The [[family]] tables of experiment files (and [placement]): shapes, pair sources, contact
+// types, vertex counts, radii and placements, read into FamilySpec.
+#include "experiment/config/family_config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "gjklab/exact/mesh_io.hpp"
+#include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/cases/real_objects.hpp"
+#include "gjklab/experiment/cases/scene_stream.hpp"
+
+namespace gjklab::experiment {
+
+namespace {
+
+/// The largest sphere-swept radius (shape units), as the bound of `scale`.
+constexpr double kMaxRadius = 1e100;
+constexpr std::int64_t kMaxVertices = 10'000'000;
+constexpr double kMinScale = 1e-100;  // keeps squared lengths far from underflow and overflow
+constexpr double kMaxScale = 1e100;
+
+constexpr ContactType kContactTypes[] = {
+    ContactType::face_face,      ContactType::edge_edge,         ContactType::vertex_face,
+    ContactType::edge_face,      ContactType::vertex_edge,       ContactType::vertex_vertex,
+    ContactType::parallel_edges, ContactType::crossing_segments, ContactType::needle_point,
+    ContactType::needle_segment, ContactType::thin_rods,         ContactType::crossing_wedges,
+    ContactType::tilted_plates,
+};
+
+std::string shape_names() {
+  std::vector<std::string_view> names;
+  for (const FamilyShapeInfo& shape : family_shapes())
+    names.push_back(shape.name);
+  return join(names);
+}
+
+std::string contact_names() {
+  std::vector<std::string_view> names;
+  for (ContactType c : kContactTypes)
+    names.push_back(to_string(c));
+  names.push_back("any");
+  return join(names);
+}
+
+ShapeKind read_shape(const Section& s, std::string_view key) {
+  const std::string name = *s.string(key);
+  if (const ShapeGenerator* generator = find_shape_generator(name)) return generator->kind;
+  s.fail(*s.find(key), key, "unknown shape '" + name + "'; valid: " + shape_names());
+}
+
+/// The vertex count a shape gets when the family does not say (the generator's default; 32
+/// for shapes read from files, whose clouds are read whole).
+Interval default_vertices(ShapeKind kind) {
+  const ShapeGenerator* generator = find_shape_generator(kind);
+  const double n = generator ? generator->default_vertices : 32;
+  return {n, n};
+}
+
+}  // namespace
+
+
+/// Reads [placement] keys from `s` on top of `base`.
+PlacementSpec read_placement(const Section& s, PlacementSpec base) {
+  s.allow_only({"mode", "gap", "depth", "overlapping_fraction", "spread"});
+  if (const auto mode = s.string("mode")) {
+    const auto value = value_named(kPlacementModeNames, *mode);
+    if (!value)
+      s.fail(*s.find("mode"), "mode",
+             "unknown placement mode '" + *mode + "'; valid: " + names_list(kPlacementModeNames));
+    base.mode = *value;
+  }
+  if (const auto gap = s.positive_interval("gap")) base.gap = *gap;
+  if (const auto depth = s.positive_interval("depth")) base.depth = *depth;
+  if (const auto f = s.fraction("overlapping_fraction")) base.overlapping_fraction = *f;
+  if (const auto spread = s.positive("spread")) base.spread = *spread;
+  return base;
+}
+
+namespace {
+
+/// `contact = "..."` of a contact family.
+void read_contact(const Section& s, FamilySpec& f) {
+  const auto name = s.string("contact");
+  if (!name)
+    s.missing("contact", "missing (shape = \"contact\" needs it); valid: " + contact_names());
+  if (*name == "any") {
+    f.contact_any = true;
+    f.contact = ContactType::face_face;
+  } else {
+    const auto* found = std::find_if(std::begin(kContactTypes), std::end(kContactTypes),
+                                     [&](ContactType c) { return to_string(c) == *name; });
+    if (found == std::end(kContactTypes))
+      s.fail(*s.find("contact"), "contact",
+             "unknown contact type '" + *name + "'; valid: " + contact_names());
+    f.contact = *found;
+  }
+  f.shape_a = ShapeKind::box;
+  f.shape_b = ShapeKind::box;
+  if (const auto angle = s.positive_interval("angle")) f.angle = *angle;
+}
+
+/// `path = "..."` of a file family: reads every pair now, so a bad file is a config error.
+/// `shape = "file"` (a cases file) or `shape = "stream"` (a scene archive's recorded queries,
+/// scene_stream.hpp): the pairs, read now so that a bad file is a config error.
+void read_stored_pairs(const Section& s, const std::string& experiment_file, FamilySpec& f,
+                       bool stream) {
+  const auto path = s.string("path");
+  if (!path)
+    s.missing("path", stream ? "missing (shape = \"stream\" needs a scene archive)"
+                             : "missing (shape = \"file\" needs the cases file)");
+  f.path = *path;
+  std::filesystem::path resolved(*path);
+  if (resolved.is_relative())
+    resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+  if (stream) {
+    try {
+      f.stored = read_scene_stream(resolved);
+    } catch (const InputError& e) {
+      s.fail(*s.find("path"), "path", e.what());
+    }
+    f.shape_a = f.shape_b = ShapeKind::from_file;
+    return;
+  }
+  std::vector<CaseOrError> cases;
+  try {
+    cases = read_cases_file(resolved);
+  } catch (const InputError& e) {
+    s.fail(*s.find("path"), "path", e.what());
+  }
+  for (const CaseOrError& c : cases) {
+    if (const auto* e = std::get_if<CaseError>(&c))
+      s.fail(*s.find("path"), "path",
+             resolved.string() + ":" + std::to_string(e->line) + ": case '" + e->id +
+                 "': " + e->problem);
+    const auto& p = std::get<PointCase>(c);
+    f.stored.push_back({p.id, p.a, p.b, p.radius_a, p.radius_b});
+  }
+  if (f.stored.empty()) s.fail(*s.find("path"), "path", resolved.string() + " holds no cases");
+  f.shape_a = f.shape_b = ShapeKind::from_file;
+}
+
+/// `path = "..."` of a mesh family: one mesh file, or a folder of them (.off, .obj, .ply,
+/// .stl), read now so that a bad file is a config error.
+void read_meshes(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+  const auto path = s.string("path");
+  if (!path) s.missing("path", "missing (shape = \"mesh\" needs a mesh file or a folder of them)");
+  f.path = *path;
+  std::filesystem::path resolved(*path);
+  if (resolved.is_relative())
+    resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+  std::vector<std::filesystem::path> files;
+  try {
+    files = exact::mesh_files(resolved);
+  } catch (const std::runtime_error& e) {
+    s.fail(*s.find("path"), "path", e.what());
+  }
+  for (const auto& file : files) {
+    try {
+      f.meshes.push_back(exact::read_mesh_vertices(file));
+    } catch (const std::runtime_error& e) {
+      s.fail(*s.find("path"), "path", e.what());
+    }
+  }
+  f.shape_a = f.shape_b = ShapeKind::mesh;
+}
+
+/// `objects = ["elephant", …]` or `"all"` of a real_object family: each object's hull, read
+/// now, so that an unknown name or a missing package is a config error.
+void read_real_objects(const Section& s, FamilySpec& f) {
+  const toml::node* node = s.find("objects");
+  if (!node)
+    s.missing("objects", "missing (shape = \"real_object\" needs \"all\" or a list of names)");
+  const bool all = node->is_string() && node->as_string()->get() == "all";
+  const toml::array* names = node->as_array();
+  if (!all && (!names || names->empty()))
+    s.fail(*node, "objects", "expected \"all\" or a non-empty array of object names");
+  if (names) {
+    for (const toml::node& entry : *names) {
+      if (!entry.is_string()) s.fail(entry, "objects", "expected object names (strings)");
+      f.objects.push_back(entry.as_string()->get());
+    }
+  }
+  try {
+    if (all) f.objects = real_object_names();
+    for (const std::string& name : f.objects)
+      f.meshes.push_back(real_object(name));
+  } catch (const std::runtime_error& e) {
+    // RealObjectError (no package, unknown name: the message lists the valid names), or a
+    // mesh of the package that cannot be read (the message names the file).
+    s.fail(*node, "objects", e.what());
+  }
+  f.shape_a = f.shape_b = ShapeKind::mesh;
+}
+
+Rotation read_rotation(const Section& s) {
+  const toml::node* node = s.find("rotate");
+  if (!node) return Rotation::random;
+  if (node->is_boolean()) return node->as_boolean()->get() ? Rotation::random : Rotation::none;
+  if (node->is_string()) {
+    const std::string& v = node->as_string()->get();
+    if (v == "random") return Rotation::random;
+    if (v == "none") return Rotation::none;
+    if (v == "axes") return Rotation::axes;
+  }
+  s.fail(*node, "rotate", "expected true, false, \"random\", \"none\" or \"axes\"");
+}
+
+/// The radius of a sphere-swept shape of its own kind when the file gives none.
+Interval default_radius(ShapeKind kind) {
+  if (kind == ShapeKind::sphere) return {1, 1};
+  if (kind == ShapeKind::capsule) return {0.5, 0.5};
+  return {0, 0};
+}
+
+/// `radius` (both shapes), `radius_a`, `radius_b`: sphere-swept shapes. Contact and file
+/// families give their pairs exactly, so they take no radius.
+void read_radii(const Section& s, bool exact_pairs, FamilySpec& f) {
+  for (std::string_view key : {"radius", "radius_a", "radius_b"}) {
+    if (!s.find(key)) continue;
+    if (exact_pairs)
+      s.fail(*s.find(key), key,
+             "applies only to generated and mesh families (contact and file pairs are exact)");
+    if (key != "radius" && s.find("radius"))
+      s.fail(*s.find(key), key, "cannot be combined with 'radius' (which sets both radii)");
+  }
+  f.radius_a = default_radius(f.shape_a);
+  f.radius_b = default_radius(f.shape_b);
+  if (const auto r = s.radius_interval("radius", kMaxRadius)) f.radius_a = f.radius_b = *r;
+  if (const auto r = s.radius_interval("radius_a", kMaxRadius)) f.radius_a = *r;
+  if (const auto r = s.radius_interval("radius_b", kMaxRadius)) f.radius_b = *r;
+}
+
+/// What a [[family]] table describes, read from its `shape` key: the kinds of pair source that
+/// take keys of their own (contact, file, stream, mesh, real_object), or generated shapes.
+struct FamilyForm {
+  bool has_shape = false;  // `shape` sets both shapes (or names a pair source)
+  bool is_contact = false;
+  bool is_stream = false;
+  bool is_file = false;  // pairs read from a file: a file family or a query stream
+  bool is_mesh = false;
+  bool is_real_object = false;
+};
+
+FamilyForm family_form(const Section& s) {
+  FamilyForm form;
+  form.has_shape = s.find("shape") != nullptr;
+  const auto pair_shape = form.has_shape && s.find("shape")->is_string()
+                              ? std::optional<std::string>(*s.string("shape"))
+                              : std::nullopt;
+  form.is_contact = pair_shape == "contact";
+  form.is_stream = pair_shape == "stream";
+  form.is_file = pair_shape == "file" || form.is_stream;
+  form.is_mesh = pair_shape == "mesh";
+  form.is_real_object = pair_shape == "real_object";
+  return form;
+}
+
+/// Refuses the keys that belong to another form of family than this one.
+void refuse_foreign_keys(const Section& s, const FamilyForm& form) {
+  if (!form.is_real_object && s.find("objects"))
+    s.fail(*s.find("objects"), "objects", "applies only to shape = \"real_object\"");
+  for (std::string_view key : {"contact", "angle"})
+    if (!form.is_contact && s.find(key))
+      s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
+  if (!form.is_file && !form.is_mesh && s.find("path"))
+    s.fail(*s.find("path"), "path", "applies only to shape = \"file\", \"stream\" or \"mesh\"");
+  for (std::string_view key : {"shape_a", "shape_b"})
+    if (form.has_shape && s.find(key))
+      s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
+}
+
+/// The pair's source: a contact configuration, stored pairs, meshes, real objects, or the
+/// generated shape (`shape`, or `shape_a` with `shape_b`).
+void read_pair_source(const Section& s, const FamilyForm& form, const std::string& experiment_file,
+                      FamilySpec& f) {
+  if (form.is_contact) {
+    read_contact(s, f);
+  } else if (form.is_file) {
+    read_stored_pairs(s, experiment_file, f, form.is_stream);
+  } else if (form.is_mesh) {
+    read_meshes(s, experiment_file, f);
+  } else if (form.is_real_object) {
+    read_real_objects(s, f);
+  } else if (form.has_shape) {
+    f.shape_a = f.shape_b = read_shape(s, "shape");
+  } else if (s.find("shape_a") || s.find("shape_b")) {
+    if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
+    if (!s.find("shape_b")) s.missing("shape_b", "missing (shape_a is given without shape_b)");
+    f.shape_a = read_shape(s, "shape_a");
+    f.shape_b = read_shape(s, "shape_b");
+  } else {
+    s.missing("shape", "missing (give 'shape', or both 'shape_a' and 'shape_b'); valid shapes: " +
+                           shape_names());
+  }
+}
+
+/// `vertices` (both shapes), `vertices_a`, `vertices_b`; each shape's default otherwise.
+void read_vertex_counts(const Section& s, FamilySpec& f) {
+  f.vertices_a = default_vertices(f.shape_a);
+  f.vertices_b = default_vertices(f.shape_b);
+  for (std::string_view key : {"vertices_a", "vertices_b"})
+    if (s.find("vertices") && s.find(key))
+      s.fail(*s.find(key), key, "cannot be combined with 'vertices' (which sets both counts)");
+  if (const auto v = s.count_interval("vertices", kMaxVertices)) f.vertices_a = f.vertices_b = *v;
+  if (const auto v = s.count_interval("vertices_a", kMaxVertices)) f.vertices_a = *v;
+  if (const auto v = s.count_interval("vertices_b", kMaxVertices)) f.vertices_b = *v;
+}
+
+/// Size, shape proportions, rotation, offset and weight of the drawn pairs.
+void read_pair_draw(const Section& s, FamilySpec& f) {
+  if (const auto scale = s.positive("scale")) {
+    if (*scale < kMinScale || *scale > kMaxScale)
+      s.fail(*s.find("scale"), "scale",
+             "must be between " + round_trip(kMinScale) + " and " + round_trip(kMaxScale) +
+                 ", got " + round_trip(*scale));
+    f.scale = *scale;
+  }
+  f.rotation = read_rotation(s);
+  if (const auto aspect = s.positive_interval("aspect")) f.aspect = *aspect;
+  if (const auto ratio = s.positive_interval("scale_b")) f.scale_ratio = *ratio;
+  if (const auto offset = s.positive_interval("offset")) f.offset = *offset;
+  if (const auto weight = s.positive("weight")) f.weight = *weight;
+}
+
+/// The family's own placement (over the experiment's); touching needs exact contacts.
+void read_family_placement(const Section& s, const FamilyForm& form, const PlacementSpec& placement,
+                           FamilySpec& f) {
+  f.placement = placement;
+  if (const toml::table* sub = s.subtable("placement"))
+    f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
+  const bool touching = f.placement.mode == PlacementMode::touching;
+  if (touching && (!form.is_contact || !exact_contact(f.contact)))
+    s.fail(s.header_line(), "placement.mode",
+           "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges "
+           "or the thin contacts)");
+}
+
+/// `name`, or one made from what the family draws.
+std::string read_family_name(const Section& s, const FamilyForm& form, const FamilySpec& f) {
+  if (const auto name = s.string("name")) {
+    if (name->empty()) s.fail(*s.find("name"), "name", "must not be empty");
+    return *name;
+  }
+  if (form.is_contact)
+    return "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
+  if (form.is_file) return "file:" + f.path;
+  if (form.is_mesh) return "mesh:" + f.path;
+  if (form.is_real_object)
+    return s.find("objects")->is_string() ? "real_object:all" : "real_object";
+  if (f.shape_a == f.shape_b) return std::string(to_string(f.shape_a));
+  return std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+}
+
+}  // namespace
+
+
+FamilySpec read_family(const Section& s, const PlacementSpec& placement,
+                       const std::string& experiment_file) {
+  s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
+                "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
+                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects"});
+  const FamilyForm form = family_form(s);
+  refuse_foreign_keys(s, form);
+  FamilySpec f;
+  read_pair_source(s, form, experiment_file, f);
+  read_vertex_counts(s, f);
+  read_pair_draw(s, f);
+  read_radii(s, form.is_contact || form.is_file, f);
+  read_family_placement(s, form, placement, f);
+  f.name = read_family_name(s, form, f);
+  return f;
+}
+
+}  // namespace gjklab::experiment
