@@ -42,6 +42,8 @@ int run_and_report(simulation::SceneRun& run, const SimulateArgs& args, std::ost
 
 int start(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   simulation::SceneSetup setup = simulation::load_scene(args.scene);
+  for (const std::string& warning : setup.warnings)
+    err << "gjklab simulate: warning: " << warning << "\n";
   const std::string path = args.output.empty() ? "results/" + setup.name + ".h5" : args.output;
   if (std::filesystem::exists(path) && !args.force) {
     err << "gjklab simulate: " << path << " exists (use --force to overwrite)\n";

@@ -33,7 +33,7 @@ constexpr int kPlacementAttempts = 1000;
 const std::string& body_shapes() {
   static const std::string names = [] {
     std::string out =
-        "box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, capsule";
+        "box, cone, cylinder, uv_sphere, hull, mesh, real_object, ball, capsule";
     for (const experiment::ShapeGenerator& g : experiment::shape_generators())
       if (g.body_cloud) out += ", " + std::string(to_string(g.kind));
     return out;
@@ -100,7 +100,7 @@ std::vector<Vec3> cloud_of(const SceneTable& t, const std::string& shape) {
   try {
     if (shape == "cone") return scaled(shapes::cone(v), s);
     if (shape == "cylinder") return scaled(shapes::cylinder(v), s);
-    if (shape == "sphere" || shape == "uv_sphere") return scaled(shapes::uv_sphere(v), s);
+    if (shape == "uv_sphere") return scaled(shapes::uv_sphere(v), s);
   } catch (const std::invalid_argument& e) {
     t.fail("vertices", e.what());
   }
@@ -384,6 +384,17 @@ std::vector<std::vector<Vec3>> funnel_panels(const SceneTable& t) {
   return out;
 }
 
+/// A body group's `shape`. `sphere` once named the UV-sphere polytope here while experiment
+/// files call a sphere-swept point so: it still builds the polytope, with a warning.
+std::string body_shape_name(const SceneTable& t, SceneSetup& s) {
+  const std::string shape = t.string("shape", "");
+  if (shape != "sphere") return shape;
+  s.warnings.push_back(t.message(
+      "shape", "\"sphere\" is deprecated in scene files: it builds the UV-sphere polytope, "
+               "now \"uv_sphere\"; a true sphere is \"ball\", as in experiment files"));
+  return "uv_sphere";
+}
+
 void add_statics(const SceneTable& root, SceneSetup& s, ShapeCache& shapes) {
   for (const SceneTable& t : root.tables("static")) {
     t.allow_only({"shape", "size", "points", "path", "position", "rotation", "friction",
@@ -479,7 +490,7 @@ void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::
     t.allow_only({"shape", "size", "vertices", "points", "path", "objects", "radius", "aspect",
                   "count", "density", "friction", "restitution", "placement", "position", "spacing",
                   "row", "region", "random_rotation", "velocity"});
-    const std::string shape = t.string("shape", "");
+    const std::string shape = body_shape_name(t, s);
     if (shape.empty()) t.fail("shape", "missing (required): " + body_shapes());
     const double radius = swept_radius_of(t, shape);
     // Generated clouds: one per body, from the group's own generator; meshes and real

@@ -32,6 +32,11 @@ class SceneTable {
     if (const toml::node* n = s_.find(k)) s_.fail(*n, k, problem);
     s_.fail(line(), k, problem);
   }
+  /// The message fail(k, problem) would throw, for a warning.
+  std::string message(std::string_view k, const std::string& problem) const {
+    const toml::node* n = s_.find(k);
+    return experiment::ConfigError(file(), n ? line_of(*n) : line(), key(k), problem).what();
+  }
   void allow_only(std::initializer_list<std::string_view> allowed) const {
     s_.allow_only(std::vector<std::string_view>(allowed));
   }

@@ -186,7 +186,7 @@ size = [20, 20, 1]
 position = [0, 0, -0.5]
 
 [[bodies]]
-shape = "sphere"
+shape = "uv_sphere"
 count = 12
 placement = "random"
 region = [[-3, -3, 0.8], [3, 3, 4]]
@@ -385,6 +385,29 @@ TEST_CASE("simulate: a stopped or killed run resumes into the uninterrupted run'
     // Nothing left to resume; --resume takes no other plan.
     CHECK(run_cli({"simulate", "--resume", part}, out, err) == 1);
     CHECK(run_cli({"simulate", scene, "--resume", part}, out, err) == 1);
+  }
+  SECTION("a checkpoint whose frames/ columns disagree is refused, naming the column") {
+    const std::string part = (dir / "cut.h5").string();
+    REQUIRE(run_cli({"simulate", scene, "--out", part, "--stop-after", "5"}, out, err) == 0);
+    {
+      // frames/kinetic_energy replaced by one value: 1 row where the group has 5.
+      const hid_t file = H5Fopen((part + ".tmp").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      REQUIRE(file >= 0);
+      REQUIRE(H5Ldelete(file, "frames/kinetic_energy", H5P_DEFAULT) >= 0);
+      const hsize_t rows = 1;
+      const hid_t space = H5Screate_simple(1, &rows, nullptr);
+      const hid_t ds = H5Dcreate2(file, "frames/kinetic_energy", H5T_NATIVE_DOUBLE, space,
+                                  H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      const double value = 0;
+      REQUIRE(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) >= 0);
+      H5Dclose(ds);
+      H5Sclose(space);
+      H5Fclose(file);
+    }
+    CHECK(run_cli({"simulate", "--resume", part + ".tmp"}, out, err) == 1);
+    CHECK(err.find("/frames/kinetic_energy has 1 rows where the group's other columns have 5") !=
+          std::string::npos);
+    CHECK_FALSE(fs::exists(part));
   }
   SECTION("SIGINT and SIGKILL on a long run, checkpoint every frame") {
     const std::string long_full = (dir / "long_full.h5").string();

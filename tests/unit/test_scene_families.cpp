@@ -333,7 +333,7 @@ shape = "box"
 size = [20, 20, 1]
 position = [0, 0, -0.5]
 [[bodies]]
-shape = "sphere"
+shape = "uv_sphere"
 position = [0, 0, 0.45]
 [narrow_phase]
 algorithm = "gjk-nesterov"
@@ -372,7 +372,30 @@ TEST_CASE("scene files: a body group may draw every body cloud of the family reg
   for (const char* own : {"box", "cone", "cylinder", "uv_sphere", "sphere", "capsule"})
     CHECK(experiment::find_body_cloud(own) == nullptr);
   CHECK(error_of("[[bodies]]\nshape = \"teapot\"\n")
-            .find("valid: box, cone, cylinder, sphere, uv_sphere, hull, mesh, real_object, ball, "
+            .find("valid: box, cone, cylinder, uv_sphere, hull, mesh, real_object, ball, "
                   "capsule, sphere_points, ball_points, cube_points, gaussian, flat_points, "
                   "collinear_points, sliver, prism, pyramid") != std::string::npos);
+}
+
+TEST_CASE("scene files: the deprecated shape \"sphere\" builds the UV sphere, with a warning",
+          "[unit][scene]") {
+  // `sphere` names a sphere-swept point in experiment files; in scene files it meant the
+  // UV-sphere polytope, and old files keep building that, told the new names.
+  const std::string body = "[[bodies]]\nshape = \"%\"\nposition = [0, 0, 1]\n";
+  auto with = [&](const std::string& shape) {
+    std::string text = body;
+    return text.replace(text.find('%'), 1, shape);
+  };
+  const simulation::SceneSetup old = simulation::parse_scene(with("sphere"), "old.toml");
+  const simulation::SceneSetup now = simulation::parse_scene(with("uv_sphere"), "new.toml");
+  REQUIRE(old.warnings.size() == 1);
+  CHECK(old.warnings[0].find("old.toml:2: key 'bodies[0].shape': \"sphere\" is deprecated") !=
+        std::string::npos);
+  CHECK(now.warnings.empty());
+  CHECK(old.shape_names == now.shape_names);
+  CHECK(old.world->bodies()[0].shape->polytope.vertices().size() ==
+        now.world->bodies()[0].shape->polytope.vertices().size());
+  // In experiment files `ball` names the sphere-swept point that `sphere` names there.
+  CHECK(experiment::find_shape_generator("ball") == experiment::find_shape_generator("sphere"));
+  CHECK(experiment::find_shape_generator("ball") != nullptr);
 }

@@ -44,7 +44,7 @@ position = [0, 0, 0.6]
 spacing = 1.1
 
 [[bodies]]
-shape = "sphere"
+shape = "uv_sphere"
 count = 2
 placement = "stack"
 position = [2, 0, 0.6]

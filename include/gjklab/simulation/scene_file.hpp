@@ -35,6 +35,9 @@ struct SceneSetup {
   /// The scene's length scale: the median dynamic body's size (hull diagonal).
   double body_size = 1;
   std::string text;  ///< the file as read, for the archive
+  /// Deprecated spellings the file used ("FILE:LINE: key 'K': ..."), for the command to print;
+  /// the scene is built as the spelling always meant.
+  std::vector<std::string> warnings;
 };
 
 /// Reads and builds a scene. Throws experiment::ConfigError (also for an unreadable file).

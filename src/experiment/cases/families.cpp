@@ -294,6 +294,9 @@ const ShapeGenerator* find_shape_generator(ShapeKind kind) {
 }
 
 const ShapeGenerator* find_shape_generator(std::string_view name) {
+  // `ball` is a sphere-swept point in experiment files as in scene files; `sphere`, the name
+  // the archives record for it, stays a synonym.
+  if (name == "ball") return find_shape_generator(ShapeKind::sphere);
   for (const ShapeGenerator& g : kShapeGenerators)
     if (g.nameable && to_string(g.kind) == name) return &g;
   return nullptr;
