@@ -44,7 +44,7 @@ case $target in
   experiment_toml)
     # Not real_objects.toml: it reads 143 meshes from a cache folder (seconds per input).
     mkdir -p "$scratch/experiments"
-    for f in "$root"/experiments/*.toml; do
+    for f in "$root"/experiments/*/*.toml; do
       case $(basename "$f") in real_objects.toml) ;; *) cp "$f" "$scratch/experiments/" ;; esac
     done
     seeds+=("$scratch/experiments")
@@ -52,7 +52,7 @@ case $target in
     ;;
   bench_config)
     mkdir -p "$scratch/bench"
-    cp "$root/experiments/seed_tables.toml" "$scratch/bench/"
+    cp "$root/experiments/bench/seed_tables.toml" "$scratch/bench/"
     seeds+=("$scratch/bench")
     ;;
   archive)

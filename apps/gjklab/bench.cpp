@@ -29,7 +29,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   cmd->add_option("--markdown", args.markdown,
                   "also write the seed tables (with the config's published figures) as Markdown");
   cmd->add_option("--config", args.config,
-                  "bench config file (TOML), e.g. experiments/seed_tables.toml");
+                  "bench config file (TOML), e.g. experiments/bench/seed_tables.toml");
   cmd->add_option("--cases", args.cases, "only cases whose name contains this text");
   cmd->add_option("--samples", args.samples, "interleaved samples per case (default 31)")
       ->check(CLI::Range(1, 100000));

@@ -1,4 +1,4 @@
-// The degenerate and near-contact families of experiments/degeneracy.toml but its 10⁴–10⁵
+// The degenerate and near-contact families of experiments/studies/degeneracy.toml but its 10⁴–10⁵
 // point clouds, as experiment-file text: exact contact of every type, ε = 1e-15 … 1e-3 of the
 // size, parallel edges, flat, collinear and duplicate clouds, single points, slivers, scale
 // disparity, offsets up to 1e9 and tiny shapes. Shared by the property tests that sample them.

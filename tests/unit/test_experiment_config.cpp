@@ -396,8 +396,8 @@ TEST_CASE("load_experiment reads files and reports unreadable ones", "[unit][con
                     Catch::Equals("/nonexistent/dir/x.toml: cannot read"));
   CHECK_THROWS_WITH(load_experiment(GJKLAB_TEST_DATA_DIR), Contains(": cannot read"));
 
-  const std::filesystem::path quickstart =
-      std::filesystem::path(GJKLAB_TEST_DATA_DIR) / ".." / ".." / "experiments" / "quickstart.toml";
+  const std::filesystem::path quickstart = std::filesystem::path(GJKLAB_TEST_DATA_DIR) / ".." /
+                                           ".." / "experiments" / "studies" / "quickstart.toml";
   const ExperimentConfig c = load_experiment(quickstart);
   CHECK(c.name == "quickstart");
   CHECK(c.source == quickstart.string());

@@ -32,7 +32,7 @@
 // up to a few 1e-14 of the pair's size (1.7e-13 on one of the property test's 2000 pairs)
 // where Johnson's sub-algorithm, which works on differences of points, stays near 1e-15;
 // in exchange it ended fewer queries on rounding (no_progress, degenerate_simplex) than the
-// other sub-algorithms in experiments/variants.toml.
+// other sub-algorithms in experiments/studies/variants.toml.
 #pragma once
 
 #include <array>

@@ -54,7 +54,7 @@ struct HuntOptions {
   HuntObjective objective = HuntObjective::wrong_boolean;
   std::uint64_t seed = 1;
   /// The most queries one restart's local search may spend. Short restarts find the most
-  /// failures per query on experiments/hunt.toml: most failures show at the first poses drawn
+  /// failures per query on experiments/hunt/hunt.toml: most failures show at the first poses drawn
   /// at the restart's contact scale, and a long local search spends queries on cases that do
   /// not fail (at 2·10⁵ queries, 6 against 48: 1.5–8x more failures per query for the peers).
   int restart_queries = 6;
