@@ -87,7 +87,7 @@ set(expected
   "apps/gjklab/wrong.cpp:1: error: #include \"hdf5.h\" is included only in src/experiment/ (apps/ goes through the experiment layer)"
   "apps/gjklab/wrong.cpp:2: error: #include \"../../src/experiment/run/result_codec.hpp\" leaves the folder"
   "apps/gjklab/wrong.cpp:3: error: #include \"experiment/run/result_codec.hpp\" is a private header of the experiment layer (src/experiment/)"
-  "bench/wrong.cpp:1: error: #include \"toml++/toml.h\" is included only in src/experiment/ (bench/ goes through the experiment layer)"
+  "bench/wrong.cpp:1: error: #include \"toml++/toml.h\" is included only in src/experiment/ or src/simulation/ (bench/ goes through the experiment or simulation layer)"
   "bench/wrong.cpp:2: error: #include \"../src/experiment/run/result_codec.hpp\" leaves the folder"
   "bench/wrong.cpp:3: error: #include \"CLI/CLI.hpp\" is the command line's"
   "bench/wrong.cpp:4: error: #include \"gjklab/cli.hpp\" is neither a public header of a layer (include/gjklab/LAYER/) nor one of bench/"

@@ -1,4 +1,4 @@
-// The distance certificate decided in floating point (src/exact/filtered_distance.cpp): where it
+// The distance certificate decided in floating point (src/exact/certificates/filtered_distance.cpp): where it
 // answers, the exact certificate on the same hint answers the same, bit for bit, and the QP
 // agrees; on adversarial hints it never certifies a wrong value; points that tie with the
 // supporting plane are decided exactly, including a tie broken by one ulp; the long double
@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "../../src/exact/filtered_distance.hpp"
-#include "../../src/exact/gmp_support.hpp"
+#include "../../src/exact/certificates/filtered_distance.hpp"
+#include "../../src/exact/arithmetic/gmp_support.hpp"
 #include "../support/gjk_hints.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"

@@ -1,4 +1,4 @@
-// gjklab's PLY reader (src/exact/ply_reader.cpp) through read_mesh_vertices: ASCII and both
+// gjklab's PLY reader (src/exact/io/ply_reader.cpp) through read_mesh_vertices: ASCII and both
 // binary byte orders, every element read in header order, lists skipped, other properties
 // ignored; the vertices come out exactly, in file order.
 #include <catch2/catch.hpp>

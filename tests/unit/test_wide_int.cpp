@@ -1,5 +1,5 @@
-// The certificates' fixed-width integers (src/exact/wide_int.hpp) and their correctly rounded
-// conversions (src/exact/wide_rounding.hpp), against GMP on random and hand-made values, and
+// The certificates' fixed-width integers (src/exact/arithmetic/wide_int.hpp) and their correctly rounded
+// conversions (src/exact/arithmetic/wide_rounding.hpp), against GMP on random and hand-made values, and
 // the certificate's refinement of its integer frame.
 #include <gmp.h>
 
@@ -9,9 +9,9 @@
 #include <optional>
 #include <random>
 
-#include "../../src/exact/gmp_support.hpp"
-#include "../../src/exact/wide_int.hpp"
-#include "../../src/exact/wide_rounding.hpp"
+#include "../../src/exact/arithmetic/gmp_support.hpp"
+#include "../../src/exact/arithmetic/wide_int.hpp"
+#include "../../src/exact/arithmetic/wide_rounding.hpp"
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 

@@ -1,4 +1,4 @@
-#include "ply_reader.hpp"
+#include "exact/io/ply_reader.hpp"
 
 #include <algorithm>
 #include <array>

@@ -20,8 +20,8 @@
 #include <string>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gmp_support.hpp"
-#include "mpfr_support.hpp"
+#include "exact/arithmetic/gmp_support.hpp"
+#include "exact/arithmetic/mpfr_support.hpp"
 
 namespace gjklab::exact {
 

@@ -12,7 +12,7 @@
 
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/geometry/polytope.hpp"
-#include "hull.hpp"
+#include "exact/hull/hull.hpp"
 
 namespace gjklab::exact {
 

@@ -17,7 +17,7 @@
 #include <string>
 
 #include "gjklab/geometry/polytope.hpp"
-#include "hull.hpp"
+#include "exact/hull/hull.hpp"
 
 namespace gjklab::exact {
 

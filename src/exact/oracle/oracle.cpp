@@ -28,8 +28,8 @@
 #include "gjklab/exact/certificate.hpp"
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/geometry/polytope.hpp"
-#include "gmp_support.hpp"
-#include "hull.hpp"
+#include "exact/arithmetic/gmp_support.hpp"
+#include "exact/hull/hull.hpp"
 
 namespace gjklab::exact {
 

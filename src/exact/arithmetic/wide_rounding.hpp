@@ -16,7 +16,7 @@
 #include <limits>
 #include <optional>
 
-#include "wide_int.hpp"
+#include "exact/arithmetic/wide_int.hpp"
 
 namespace gjklab::exact::detail {
 

@@ -11,8 +11,8 @@
 #include <stdexcept>
 
 #include "gjklab/exact/certificate.hpp"
-#include "gmp_support.hpp"
-#include "mpfr_support.hpp"
+#include "exact/arithmetic/gmp_support.hpp"
+#include "exact/arithmetic/mpfr_support.hpp"
 
 namespace gjklab::exact {
 

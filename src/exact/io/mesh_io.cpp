@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "gjklab/geometry/polytope.hpp"
-#include "ply_reader.hpp"
+#include "exact/io/ply_reader.hpp"
 
 namespace gjklab::exact {
 

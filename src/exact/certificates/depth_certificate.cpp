@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "gjklab/exact/certificate.hpp"
-#include "gmp_support.hpp"
-#include "hull.hpp"
-#include "integer_geometry.hpp"
+#include "exact/arithmetic/gmp_support.hpp"
+#include "exact/hull/hull.hpp"
+#include "exact/arithmetic/integer_geometry.hpp"
 
 namespace gjklab::exact {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "gmp_support.hpp"
+#include "exact/arithmetic/gmp_support.hpp"
 
 namespace gjklab::exact {
 

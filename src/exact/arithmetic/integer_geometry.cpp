@@ -1,5 +1,5 @@
 // Exact integer geometry on the input doubles, and the filtered extreme-point search.
-#include "integer_geometry.hpp"
+#include "exact/arithmetic/integer_geometry.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "wide_int.hpp"
+#include "exact/arithmetic/wide_int.hpp"
 
 namespace gjklab::exact::detail {
 

@@ -32,7 +32,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hull.hpp"
+#include "exact/hull/hull.hpp"
 
 namespace gjklab::exact::detail {
 
