@@ -134,7 +134,7 @@ BenchConfig load_bench_config(const std::string& path) {
   BenchConfig c;
   f.strings("suites", c.suites);
   // An empty list would measure nothing and still exit 0.
-  if (c.suites.empty()) f.fail("suites must name at least one suite (seed, random, scene)");
+  if (c.suites.empty()) f.fail("suites must name at least one suite (" + suite_list() + ")");
   f.strings("algorithms", c.algorithms);
   f.allow_only({"suites", "algorithms", "reference", "samples", "batch_seconds", "configurations",
                 "seed", "cases", "published", "description", "precision"});

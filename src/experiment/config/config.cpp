@@ -89,11 +89,7 @@ std::string swept_algorithm_names() {
 }
 
 std::string contact_names() {
-  std::vector<std::string_view> names;
-  for (ContactType c : kContactTypes)
-    names.push_back(to_string(c));
-  names.push_back("any");
-  return join(names);
+  return join(contact_choices());
 }
 
 std::string_view type_name(const toml::node& node) {
@@ -1066,6 +1062,14 @@ std::pair<toml::table, std::string> resolve_base(const std::string& text,
 }
 
 }  // namespace
+
+std::vector<std::string_view> contact_choices() {
+  std::vector<std::string_view> names;
+  for (ContactType c : kContactTypes)
+    names.push_back(to_string(c));
+  names.push_back("any");
+  return names;
+}
 
 ExperimentConfig parse_experiment(const std::string& text, const std::string& source) {
   auto [root, effective_text] = resolve_base(text, source);
