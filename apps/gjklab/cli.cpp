@@ -6,6 +6,7 @@
 #include "gjklab/bench.hpp"
 #include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/hunt.hpp"
+#include "gjklab/inspect.hpp"
 #include "gjklab/names.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"
