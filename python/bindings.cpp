@@ -355,7 +355,7 @@ py::object typed_default(const std::string& text) {
   return numbers;
 }
 
-/// algorithms(): name → {kind, description, peer, depth, swept, options: {key: default}}.
+/// algorithms(): name → {kind, group, description, peer, depth, swept, options: {key: default}}.
 py::dict algorithms() {
   py::dict out;
   for (const AlgorithmInfo& info : experiment::algorithms()) {
@@ -365,9 +365,8 @@ py::dict algorithms() {
     for (const auto& [key, text] : experiment::describe_options(spec))
       options[py::str(key)] = typed_default(text);
     py::dict entry;
-    entry["kind"] = info.kind == experiment::AnswerKind::boolean    ? "boolean"
-                    : info.kind == experiment::AnswerKind::distance ? "distance"
-                                                                    : "exact";
+    entry["kind"] = std::string(to_string(info.kind));
+    entry["group"] = std::string(to_string(experiment::group_of(info)));
     entry["description"] = std::string(info.description);
     entry["peer"] = info.peer;
     entry["depth"] = info.depth;
@@ -614,8 +613,10 @@ answer was obtained (method: 'certified' or 'qp').)");
       py::arg("path"),
       "The points of a .xyz, .off, .obj, .ply or .stl file (an n×3 float64 array), read as "
       "gjklab query reads them");
-  m.def("algorithms", &algorithms,
-        "Every registered algorithm: name -> kind, description, and its options with defaults");
+  m.def(
+      "algorithms", &algorithms,
+      "Every registered algorithm: name -> kind, group (gjk, own, peer, oracle), description, and "
+      "its options with defaults");
   m.def("families", &families, "Every shape a [[family]] of an experiment can name");
   m.def("real_objects", &experiment::real_object_names,
         "Names of the real objects (Debian package libcgal-demo), for shape = \"real_object\"");

@@ -14,8 +14,10 @@ namespace bench = experiment::bench;
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "bench", "time every algorithm on identical inputs (interleaved, medians and ratios)");
-  cmd->add_option("--suite", args.suite, "seed, random, scene or all (default: all)")
-      ->check(CLI::IsMember({"seed", "random", "scene", "all"}));
+  std::vector<std::string> suites = bench::all_suites();
+  suites.emplace_back("all");
+  cmd->add_option("--suite", args.suite, bench::suite_list() + " or all (default: all)")
+      ->check(CLI::IsMember(suites));
   cmd->add_option(
          "--algorithms", args.algorithms,
          "comma-separated names, each optionally with +hc for hill-climbing support "
@@ -59,7 +61,7 @@ int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& er
   // Command-line settings override the file's.
   if (args.suite != "all" || args.config.empty()) {
     if (args.suite == "all")
-      config.suites = {"seed", "random", "scene"};
+      config.suites = bench::all_suites();
     else
       config.suites = {args.suite};
   }

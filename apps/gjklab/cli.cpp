@@ -6,6 +6,8 @@
 #include "gjklab/bench.hpp"
 #include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/hunt.hpp"
+#include "gjklab/inspect.hpp"
+#include "gjklab/names.hpp"
 #include "gjklab/query.hpp"
 #include "gjklab/replay.hpp"
 #include "gjklab/run.hpp"
@@ -34,6 +36,8 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   auto* simulate = add_simulate_command(app, simulate_args);
   SchemaArgs schema_args;
   auto* schema = add_schema_command(app, schema_args);
+  NamesArgs names_args;
+  auto* names = add_names_command(app, names_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -52,6 +56,7 @@ int run(int argc, const char* const* argv, std::istream& in, std::ostream& out, 
   if (hunt->parsed()) return run_hunt_command(hunt_args, out, err);
   if (simulate->parsed()) return run_simulate_command(simulate_args, out, err);
   if (schema->parsed()) return run_schema_command(schema_args, out, err);
+  if (names->parsed()) return run_names_command(names_args, out);
   if (version->parsed()) {
     for (const auto& [name, value] : experiment::build_provenance())
       out << name << ": " << value << "\n";

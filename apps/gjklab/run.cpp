@@ -12,7 +12,6 @@
 #include <ostream>
 #include <sstream>
 
-#include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/run/driver.hpp"
 #include "gjklab/experiment/run/ranks.hpp"
@@ -65,12 +64,6 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& args) {
                       std::to_string(experiment::kDistributedRoundCases) +
                       " under mpirun): at most this much work is lost if the run is killed")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 30));
-  return cmd;
-}
-
-CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args) {
-  CLI::App* cmd = app.add_subcommand("inspect", "print an archive's provenance and summary");
-  cmd->add_option("archive", args.archive, "HDF5 archive written by `gjklab run`")->required();
   return cmd;
 }
 
@@ -154,50 +147,6 @@ int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream&
         << e.what() << "\n";
     // The other ranks would wait for this one in the next round: end the job.
     if (ranks && ranks->size() > 1 && !ranks->failure_shared) ranks->abort(1);
-    return 1;
-  }
-}
-
-int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream& err) {
-  try {
-    const experiment::Archive archive = experiment::read_archive_isolated(args.archive);
-    const auto& h = archive.header;
-    out << "archive: " << args.archive << " (schema " << archive.schema_version << ")\n";
-    out << "experiment: " << h.experiment_name << ", seed " << h.seed << ", "
-        << archive.results.size() << " of " << h.cases_planned << " cases, "
-        << (archive.complete ? "complete" : "INCOMPLETE") << "\n";
-    out << "run: " << h.start_time << " to " << archive.end_time << "\n";
-    for (const auto& [key, value] : h.provenance)
-      out << key << ": " << value << "\n";
-    for (std::size_t i = 0; i < h.algorithm_names.size(); ++i) {
-      out << "options " << h.algorithm_names[i] << ":";
-      for (const auto& [key, value] : h.algorithm_options[i])
-        out << " " << key << "=" << value;
-      out << "\n";
-    }
-    out << "\n";
-    experiment::SummaryBuilder summary(h.algorithm_names);
-    experiment::FamilySummaryBuilder by_family(h.family_names, h.algorithm_names);
-    std::size_t kept = 0;
-    for (const auto& r : archive.results) {
-      summary.add(r);
-      by_family.add(r);
-      kept += r.geometry.has_value();
-    }
-    experiment::print_summary(out, summary.build());
-    if (h.family_names.size() > 1) {
-      out << "\nper family:\n";
-      experiment::print_family_table(out, by_family.build());
-    }
-    out << kept << " cases keep their geometry (wrong or not converged)\n";
-    if (h.oracle) {
-      out << "\nexact answers (certified, or by the QP):\n";
-      experiment::print_oracle_methods(
-          out, experiment::oracle_method_counts(archive.results, h.family_names));
-    }
-    return 0;
-  } catch (const std::exception& e) {
-    err << "gjklab inspect: " << e.what() << "\n";
     return 1;
   }
 }

@@ -1,5 +1,4 @@
-// `gjklab run` (an experiment file to an HDF5 archive) and `gjklab inspect` (an archive's
-// provenance and summary).
+// `gjklab run`: an experiment file to an HDF5 archive.
 #pragma once
 
 #include <cstdint>
@@ -23,14 +22,8 @@ struct RunArgs {
   std::uint64_t checkpoint = 0;  ///< 0: the default interval
 };
 
-struct InspectArgs {
-  std::string archive;
-};
-
 CLI::App* add_run_command(CLI::App& app, RunArgs& args);
-CLI::App* add_inspect_command(CLI::App& app, InspectArgs& args);
 
 int run_experiment_command(const RunArgs& args, std::ostream& out, std::ostream& err);
-int run_inspect_command(const InspectArgs& args, std::ostream& out, std::ostream& err);
 
 }  // namespace gjklab::cli

@@ -1,5 +1,6 @@
 """gjklab.query and gjklab.exact give the command line's answers, bit for bit."""
 
+import json
 import math
 from fractions import Fraction
 
@@ -7,7 +8,7 @@ import numpy as np
 import pytest
 
 import gjklab
-from conftest import cli_query, is_collinear_pair
+from conftest import cli_query, is_collinear_pair, run_cli
 
 
 def plain(value):
@@ -132,11 +133,26 @@ def test_every_algorithm_lists_its_options_with_defaults():
     assert {"gjk-bool", "gjk-johnson", "epa", "exact", "libccd-gjk"} <= set(listed)
     for name, entry in listed.items():
         assert entry["kind"] in ("boolean", "distance", "exact")
+        assert entry["group"] in ("gjk", "own", "peer", "oracle")
+        assert (entry["group"] == "peer") == entry["peer"]
         assert isinstance(entry["description"], str) and entry["description"]
         for key, default in entry["options"].items():
             # Each default is accepted back as the option's value.
             if name != "exact":
                 gjklab.query([[0.0, 0.0, 0.0]], [[1.0, 0.0, 0.0]], name, **{key: default})
+
+
+def test_the_module_and_gjklab_names_list_the_same_algorithms_and_defaults():
+    # Two paths to the registry: the module reads the defaults back from their archived text,
+    # `gjklab names --json` from the options struct itself.
+    listed = gjklab.algorithms()
+    named = json.loads(run_cli("names", "--json").stdout)["algorithms"]
+    assert [a["name"] for a in named] == list(listed)
+    for a in named:
+        entry = listed[a["name"]]
+        assert (a["group"], a["kind"], a["answers"]["depth"]) == \
+            (entry["group"], entry["kind"], entry["depth"])
+        assert {o["key"]: o["default"] for o in a["options"]} == entry["options"], a["name"]
 
 
 def test_sphere_swept_shapes():

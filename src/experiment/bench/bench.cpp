@@ -39,15 +39,27 @@ void set_case_ratios(std::vector<BenchRecord>& rows, std::span<const RatioRole> 
   }
 }
 
+std::vector<std::string> all_suites() {
+  return {"seed", "random", "scene"};
+}
+
+std::string suite_list() {
+  std::string list;
+  for (const std::string& s : all_suites())
+    list += (list.empty() ? "" : ", ") + s;
+  return list;
+}
+
 namespace {
 
 void check_bench_config(const BenchConfig& config) {
   if (config.samples < 1) throw BenchError("samples must be at least 1");
   if (config.configurations < 1) throw BenchError("configurations must be at least 1");
   if (!(config.batch_seconds >= 0)) throw BenchError("batch time must be non-negative");
+  const std::vector<std::string> valid = all_suites();
   for (const std::string& s : config.suites)
-    if (s != "seed" && s != "random" && s != "scene")
-      throw BenchError("unknown suite '" + s + "'; valid suites: seed, random, scene, all");
+    if (std::find(valid.begin(), valid.end(), s) == valid.end())
+      throw BenchError("unknown suite '" + s + "'; valid suites: " + suite_list() + ", all");
 }
 
 bool has_entry(const std::vector<Entry>& entries, const std::string& name) {

@@ -101,7 +101,7 @@ BenchConfig read_bench_config(const std::string& path) {
   read_strings(s, "suites", c.suites);
   // An empty list would measure nothing and still exit 0.
   if (c.suites.empty()) {
-    const char* problem = "must name at least one suite (seed, random, scene)";
+    const std::string problem = "must name at least one suite (" + suite_list() + ")";
     if (!s.find("suites")) s.missing("suites", problem);
     s.fail(*s.find("suites"), "suites", problem);
   }

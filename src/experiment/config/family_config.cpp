@@ -41,11 +41,7 @@ std::string shape_names() {
 }
 
 std::string contact_names() {
-  std::vector<std::string_view> names;
-  for (ContactType c : kContactTypes)
-    names.push_back(to_string(c));
-  names.push_back("any");
-  return join(names);
+  return join(contact_choices());
 }
 
 ShapeKind read_shape(const Section& s, std::string_view key) {
@@ -375,6 +371,14 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   read_family_placement(s, form, placement, f);
   f.name = read_family_name(s, form, f);
   return f;
+}
+
+std::vector<std::string_view> contact_choices() {
+  std::vector<std::string_view> names;
+  for (ContactType c : kContactTypes)
+    names.push_back(to_string(c));
+  names.push_back("any");
+  return names;
 }
 
 }  // namespace gjklab::experiment

@@ -32,6 +32,21 @@ constexpr auto kObjectiveNames = std::to_array<EnumName<HuntObjective>>({
 static_assert(in_value_order(kObjectiveNames) &&
               ends_at(kObjectiveNames, HuntObjective::false_convergence));
 
+// What each objective counts as a failure, in the words tools print beside a study's table.
+constexpr auto kObjectiveMeanings = std::to_array<EnumName<HuntObjective>>({
+    {HuntObjective::wrong_boolean,
+     "a boolean that differs from the exact one outside the touching band"},
+    {HuntObjective::error,
+     "the relative distance error, scored; a failure above the touching band"},
+    {HuntObjective::iterations, "the iterations used, scored; a failure at the step limit"},
+    {HuntObjective::not_converged, "any termination other than converged"},
+    {HuntObjective::false_convergence,
+     "a `converged` answer whose proven bracket misses the exact distance, or, without a "
+     "bracket, a wrong `converged` answer"},
+});
+static_assert(in_value_order(kObjectiveMeanings) &&
+              ends_at(kObjectiveMeanings, HuntObjective::false_convergence));
+
 /// A pair as the search moves it.
 struct Pair {
   std::vector<Vec3> a, b;
@@ -344,6 +359,10 @@ std::uint64_t random_baseline_failures(const ExperimentConfig& config, const Jud
 
 std::string_view to_string(HuntObjective o) {
   return name_of(kObjectiveNames, o);
+}
+
+std::string_view hunt_objective_meaning(HuntObjective o) {
+  return name_of(kObjectiveMeanings, o);
 }
 
 std::optional<HuntObjective> hunt_objective_from_string(std::string_view name) {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "gjklab/experiment/registry/algorithms.hpp"
@@ -164,30 +165,90 @@ std::string describe(const OptionRow& row, const AlgorithmOptions& o) {
   return std::visit([&](auto access) { return text(access(copy)); }, row.member);
 }
 
+// ---- what a row accepts, in words (the parsers' rules above, restated for listings) ----
+
+OptionValues values_of(const OptionRange& range, int*) {
+  const std::string bounds = range.text.empty() ? ">= 1" : "in " + std::string(range.text);
+  return {"integer", {}, "an integer " + bounds};
+}
+
+OptionValues values_of(const OptionRange& range, double*) {
+  if (range.min_exclusive) return {"number", {}, "a number > " + round_trip(range.min)};
+  if (std::isfinite(range.min)) return {"number", {}, "a number >= " + round_trip(range.min)};
+  return {"number", {}, "a finite number"};
+}
+
+OptionValues values_of(const OptionRange&, bool*) {
+  return {"boolean", {}, "true or false"};
+}
+
+OptionValues values_of(const OptionRange&, Vec3*) {
+  return {"direction", {}, "three finite numbers x y z, not all zero"};
+}
+
+template <class E>
+requires std::is_enum_v<E> OptionValues values_of(const OptionRange&, E*) {
+  OptionValues v{"choice", {}, "one of"};
+  for (E value : Choice<E>::values) {
+    v.accepts += v.choices.empty() ? " " : ", ";
+    v.accepts += to_string(value);
+    v.choices.push_back(to_string(value));
+  }
+  return v;
+}
+
 // ---- the schemas ----
+
+// The meanings of keys that several algorithms share, said once.
+constexpr std::string_view kMaxIterationsMeaning =
+    "bound on main-loop iterations; reaching it is reported as step_limit, not as an answer";
+constexpr std::string_view kInitialDirectionMeaning =
+    "first search direction (any length) of start = fixed_direction, and of a centre start "
+    "that falls back to it";
+constexpr std::string_view kRecenterMeaning =
+    "translate a pair far from the origin exactly towards it before the query, so that "
+    "support values are compared at the pair's scale; false: the coordinates as given";
+constexpr std::string_view kMprToleranceMeaning =
+    "libccd's mpr_tolerance (absolute, length units): MPR answers no intersection once a "
+    "support point moves the portal outward by no more than this";
 
 /// The keys of GjkDistanceOptions, on the member `Options` returns (gjk_distance, or
 /// gjk_nesterov, which extends it).
 template <auto Options>
 constexpr std::array<OptionRow, 9> distance_rows() {
   return {{
-      {"max_iterations", [](AlgorithmOptions& o) -> int& { return Options(o).max_iterations; }},
-      {"convergence",
-       [](AlgorithmOptions& o) -> GjkConvergence& { return Options(o).convergence; }},
+      {"max_iterations", [](AlgorithmOptions& o) -> int& { return Options(o).max_iterations; },
+       kMaxIterationsMeaning},
+      {"convergence", [](AlgorithmOptions& o) -> GjkConvergence& { return Options(o).convergence; },
+       "the stopping test: relative (relative_gap), absolute (absolute_gap_squared) or "
+       "duality_gap (duality_gap_tolerance); only its tolerances are read"},
       {"relative_gap", [](AlgorithmOptions& o) -> double& { return Options(o).relative_gap; },
+       "relative, on squared lengths (dimensionless): converged when the gap |v|^2 - v.w is at "
+       "most relative_gap |v|^2 (van den Bergen's test)",
        kNonNegative},
       {"absolute_gap_squared",
        [](AlgorithmOptions& o) -> double& { return Options(o).absolute_gap_squared; },
+       "absolute, squared length units: converged when |v|^2 - v.w is at most this "
+       "(convergence = absolute; with relative, a floor beside the relative test; 0: none)",
        kNonNegative},
       {"duality_gap_tolerance",
        [](AlgorithmOptions& o) -> double& { return Options(o).duality_gap_tolerance; },
+       "absolute, squared length units: converged when the Frank-Wolfe duality gap "
+       "2(|v|^2 - v.w) is at most this (convergence = duality_gap)",
        kNonNegative},
       {"relative_contact",
-       [](AlgorithmOptions& o) -> double& { return Options(o).relative_contact; }, kNonNegative},
-      {"start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return Options(o).start; }},
+       [](AlgorithmOptions& o) -> double& { return Options(o).relative_contact; },
+       "relative to the simplex size, not squared: contact when |v| is at most this times the "
+       "largest simplex vertex norm",
+       kNonNegative},
+      {"start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return Options(o).start; },
+       "first support point of a cold start: in initial_direction, or facing the origin from "
+       "the difference of the shapes' vertex means"},
       {"initial_direction",
-       [](AlgorithmOptions& o) -> Vec3& { return Options(o).initial_direction; }},
-      {"recenter", [](AlgorithmOptions& o) -> bool& { return Options(o).recenter; }},
+       [](AlgorithmOptions& o) -> Vec3& { return Options(o).initial_direction; },
+       kInitialDirectionMeaning},
+      {"recenter", [](AlgorithmOptions& o) -> bool& { return Options(o).recenter; },
+       kRecenterMeaning},
   }};
 }
 
@@ -199,7 +260,8 @@ GjkNesterovOptions& nesterov_options(AlgorithmOptions& o) {
 }
 
 constexpr OptionRow kPrecisionRow{
-    "precision", [](AlgorithmOptions& o) -> ScalarPrecision& { return o.precision; }};
+    "precision", [](AlgorithmOptions& o) -> ScalarPrecision& { return o.precision; },
+    "floating-point type the query computes in (inputs rounded to it; answers in double)"};
 
 /// Rows followed by more rows, in one array.
 template <std::size_t N, std::size_t M>
@@ -214,11 +276,16 @@ constexpr std::array<OptionRow, N + M> join(const std::array<OptionRow, N>& a,
 }
 
 constexpr auto kGjkBooleanRows = std::to_array<OptionRow>({
-    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.gjk_boolean.max_iterations; }},
-    {"start", [](AlgorithmOptions& o) -> GjkBooleanStart& { return o.gjk_boolean.start; }},
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.gjk_boolean.max_iterations; },
+     kMaxIterationsMeaning},
+    {"start", [](AlgorithmOptions& o) -> GjkBooleanStart& { return o.gjk_boolean.start; },
+     "first simplex point and search direction: a support point in initial_direction, one "
+     "facing the origin from the difference of the vertex means, or that difference itself"},
     {"initial_direction",
-     [](AlgorithmOptions& o) -> Vec3& { return o.gjk_boolean.initial_direction; }},
-    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_boolean.recenter; }},
+     [](AlgorithmOptions& o) -> Vec3& { return o.gjk_boolean.initial_direction; },
+     kInitialDirectionMeaning},
+    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_boolean.recenter; },
+     kRecenterMeaning},
     kPrecisionRow,
 });
 
@@ -226,70 +293,103 @@ constexpr auto kGjkDistanceRows =
     join(distance_rows<distance_options>(), std::array<OptionRow, 1>{kPrecisionRow});
 
 // warm_start last, so that the variants' earlier rows keep their order in archived descriptions.
-constexpr auto kGjkVariantRows = join(
-    kGjkDistanceRows, std::to_array<OptionRow>({
-                          {"warm_start", [](AlgorithmOptions& o) -> bool& { return o.warm_start; }},
-                      }));
+constexpr auto kGjkVariantRows =
+    join(kGjkDistanceRows,
+         std::to_array<OptionRow>({
+             {"warm_start", [](AlgorithmOptions& o) -> bool& { return o.warm_start; },
+              "start from the case's recorded simplex (a scene's previous frame, family "
+              "stream); cases without one start cold"},
+         }));
 
 constexpr auto kGjkNesterovRows =
     join(distance_rows<nesterov_options>(),
          std::to_array<OptionRow>({
              {"normalize_direction",
-              [](AlgorithmOptions& o) -> bool& { return o.gjk_nesterov.normalize_direction; }},
+              [](AlgorithmOptions& o) -> bool& { return o.gjk_nesterov.normalize_direction; },
+              "false: the paper's momentum schedule; true: coal's normalised heuristic for "
+              "shapes that are not strictly convex"},
              kPrecisionRow,
          }));
 
 constexpr auto kEpaRows = std::to_array<OptionRow>({
-    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.epa.max_iterations; }},
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.epa.max_iterations; },
+     "bound on EPA's expansion steps (one support evaluation each); reaching it is reported as "
+     "step_limit"},
     // EPA's own bound (epa.hpp), checked here so that the error names the file and line.
     {"max_faces",
      [](AlgorithmOptions& o) -> int& { return o.epa.max_faces; },
+     "capacity of the face buffer; an expansion needing more stops the query (out of faces)",
      {.min = 4, .max = 1 << 26, .text = "[4, 2^26]"}},
     {"epa_relative_gap", [](AlgorithmOptions& o) -> double& { return o.epa.relative_gap; },
+     "relative to the depth, not squared: converged when the closest face's upper and lower "
+     "bounds differ by at most this times the lower bound",
      kNonNegative},
     {"relative_noise", [](AlgorithmOptions& o) -> double& { return o.epa.relative_noise; },
+     "relative to the polytope's radius, not squared: lengths below this are rounding noise "
+     "(the gap test's floor, the flatness threshold)",
      kNonNegative},
     // Its GJK phase runs gjk-johnson with gjk_distance.
     {"gjk_max_iterations",
-     [](AlgorithmOptions& o) -> int& { return o.gjk_distance.max_iterations; }},
-    {"gjk_start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return o.gjk_distance.start; }},
-    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_distance.recenter; }},
+     [](AlgorithmOptions& o) -> int& { return o.gjk_distance.max_iterations; },
+     "bound on the iterations of the GJK phase; reaching it is reported as step_limit"},
+    {"gjk_start", [](AlgorithmOptions& o) -> GjkDistanceStart& { return o.gjk_distance.start; },
+     "first support point of the GJK phase's cold start: in initial_direction, or facing "
+     "the origin from the difference of the shapes' vertex means"},
+    {"recenter", [](AlgorithmOptions& o) -> bool& { return o.gjk_distance.recenter; },
+     kRecenterMeaning},
     kPrecisionRow,
 });
 
 constexpr auto kLibccdRows = std::to_array<OptionRow>({
-    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; }},
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; },
+     "libccd's iteration budget (its own default is unbounded); the adapter enforces it for "
+     "MPR too"},
     {"mpr_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.mpr_tolerance; },
-     kPositive},
+     kMprToleranceMeaning, kPositive},
 });
 
 constexpr auto kLibccdDepthRows = std::to_array<OptionRow>({
-    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; }},
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.libccd.max_iterations; },
+     "libccd's iteration budget of the boolean phase (its own default is unbounded)"},
     {"max_depth_iterations",
-     [](AlgorithmOptions& o) -> int& { return o.libccd.max_depth_iterations; }},
+     [](AlgorithmOptions& o) -> int& { return o.libccd.max_depth_iterations; },
+     "support evaluations allowed to the depth phase beyond the boolean phase's budget"},
     {"mpr_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.mpr_tolerance; },
-     kPositive},
+     kMprToleranceMeaning, kPositive},
     {"epa_tolerance", [](AlgorithmOptions& o) -> double& { return o.libccd.epa_tolerance; },
+     "libccd's epa_tolerance (absolute, squared length units): EPA stops when a support "
+     "point gains less than this over the polytope",
      kPositive},
 });
 
 constexpr auto kSatRows = std::to_array<OptionRow>({
-    {"early_exit", [](AlgorithmOptions& o) -> bool& { return o.sat.early_exit; }},
+    {"early_exit", [](AlgorithmOptions& o) -> bool& { return o.sat.early_exit; },
+     "stop at the first separating axis; false: test every axis and report the largest gap "
+     "(the best SAT lower bound of the distance)"},
 });
 
 #ifdef GJKLAB_HAVE_FCL
 constexpr auto kFclRows = std::to_array<OptionRow>({
-    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.max_iterations; }},
-    {"epa_max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_iterations; }},
-    {"epa_max_faces", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_faces; }},
-    {"epa_max_vertices", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_vertices; }},
+    {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.max_iterations; },
+     "GJK iteration bound of both FCL solvers"},
+    {"epa_max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_iterations; },
+     "fcl-indep's EPA: bound on iterations"},
+    {"epa_max_faces", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_faces; },
+     "fcl-indep's EPA: bound on the faces of its polytope"},
+    {"epa_max_vertices", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_vertices; },
+     "fcl-indep's EPA: bound on the vertices of its polytope"},
 });
 #endif
 
 // The oracle's depth flag comes from the experiment's [oracle] table; the archive records it
 // with the `exact` algorithm so that replay asks for the same answer.
 constexpr auto kExactRows = std::to_array<OptionRow>({
-    {"depth", [](AlgorithmOptions& o) -> bool& { return o.oracle.depth; }, {}, OptionUse::recorded},
+    {"depth",
+     [](AlgorithmOptions& o) -> bool& { return o.oracle.depth; },
+     "also compute the exact penetration depth of intersecting pairs (set by the experiment's "
+     "[oracle] table)",
+     {},
+     OptionUse::recorded},
 });
 
 /// The schema of a registered algorithm; empty for an unknown name.
@@ -343,6 +443,15 @@ std::string round_trip(double x) {
   char buffer[64];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
   return ec == std::errc() ? std::string(buffer, end) : std::to_string(x);
+}
+
+OptionValues option_values(const OptionRow& row) {
+  return std::visit(
+      [&](auto access) {
+        using Member = std::remove_reference_t<decltype(access(std::declval<AlgorithmOptions&>()))>;
+        return values_of(row.range, static_cast<Member*>(nullptr));
+      },
+      row.member);
 }
 
 std::vector<std::string_view> option_keys(std::string_view algorithm) {

@@ -471,6 +471,12 @@ std::invalid_argument polytopes_only(const AlgorithmInfo& algorithm) {
 
 }  // namespace
 
+AlgorithmGroup group_of(const AlgorithmInfo& algorithm) {
+  if (algorithm.peer) return AlgorithmGroup::peer;
+  if (algorithm.kind == AnswerKind::exact) return AlgorithmGroup::oracle;
+  return algorithm.run_traced ? AlgorithmGroup::gjk : AlgorithmGroup::own;
+}
+
 bool takes_precision(const AlgorithmInfo& algorithm) {
   return algorithm.run_at_precision != nullptr;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace gjklab::experiment {
 
@@ -77,32 +79,23 @@ RunSummary SummaryBuilder::build() const {
   return s;
 }
 
-void print_summary(std::ostream& out, const RunSummary& s) {
-  out << s.cases << " cases";
-  if (s.contact[0] + s.contact[1] + s.contact[2] > 0) {
-    out << " (exact: " << s.contact[0] << " separated, " << s.contact[1] << " touching band, "
-        << s.contact[2] << " intersecting)";
-  }
-  out << "\n\n";
-  char line[256];
-  // The name column fits the longest algorithm name (at least 14 characters).
-  int width = 14;
-  for (const AlgorithmSummary& a : s.algorithms)
-    width = std::max(width, static_cast<int>(std::min<std::size_t>(a.name.size(), 64)));
-  std::snprintf(line, sizeof line, "%-*s %8s %8s %10s %10s %10s %8s %6s %10s\n", width, "algorithm",
-                "cases", "wrong", "err_med", "err_p99", "err_max", "it_mean", "it_max", "ns/query");
-  out << line;
-  for (const AlgorithmSummary& a : s.algorithms) {
-    const bool has_distance = a.distances > 0;
-    std::snprintf(line, sizeof line, "%-*s %8llu %8llu %10s %10s %10s %8.2f %6d %10s\n", width,
-                  a.name.c_str(), static_cast<unsigned long long>(a.cases),
-                  static_cast<unsigned long long>(a.wrong_booleans),
-                  has_distance ? format("%.2e", a.rel_error_median).c_str() : "-",
-                  has_distance ? format("%.2e", a.rel_error_p99).c_str() : "-",
-                  has_distance ? format("%.2e", a.rel_error_max).c_str() : "-", a.iterations_mean,
-                  a.iterations_max, a.timed ? format("%.0f", a.time_ns_median).c_str() : "-");
-    out << line;
-  }
+namespace {
+
+/// The summary table's row of one algorithm.
+std::vector<std::string> summary_cells(const AlgorithmSummary& a) {
+  auto error = [&](double e) { return a.distances > 0 ? format("%.2e", e) : std::string("-"); };
+  return {a.name,
+          std::to_string(a.cases),
+          std::to_string(a.wrong_booleans),
+          error(a.rel_error_median),
+          error(a.rel_error_p99),
+          error(a.rel_error_max),
+          format("%.2f", a.iterations_mean),
+          std::to_string(a.iterations_max),
+          a.timed ? format("%.0f", a.time_ns_median) : std::string("-")};
+}
+
+void print_terminations(std::ostream& out, const RunSummary& s) {
   out << "\nterminations:\n";
   for (const AlgorithmSummary& a : s.algorithms) {
     out << "  " << a.name << ":";
@@ -112,17 +105,21 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     }
     out << "\n";
   }
-  bool any_depth = false;
+}
+
+void print_depth_errors(std::ostream& out, const RunSummary& s) {
+  const bool any_depth = std::any_of(s.algorithms.begin(), s.algorithms.end(),
+                                     [](const AlgorithmSummary& a) { return a.depths > 0; });
+  if (!any_depth) return;
+  out << "penetration depth error / size (intersecting pairs, against the exact depth):\n";
   for (const AlgorithmSummary& a : s.algorithms)
-    any_depth = any_depth || a.depths > 0;
-  if (any_depth) {
-    out << "penetration depth error / size (intersecting pairs, against the exact depth):\n";
-    for (const AlgorithmSummary& a : s.algorithms)
-      if (a.depths > 0)
-        out << "  " << a.name << ": " << a.depths << " pairs, median "
-            << format("%.2e", a.depth_error_median) << ", max " << format("%.2e", a.depth_error_max)
-            << "\n";
-  }
+    if (a.depths > 0)
+      out << "  " << a.name << ": " << a.depths << " pairs, median "
+          << format("%.2e", a.depth_error_median) << ", max " << format("%.2e", a.depth_error_max)
+          << "\n";
+}
+
+void print_failure_classes(std::ostream& out, const RunSummary& s) {
   out << "failure classes (other than none):\n";
   for (const AlgorithmSummary& a : s.algorithms) {
     out << "  " << a.name << ":";
@@ -134,6 +131,32 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     }
     out << (any ? "\n" : " -\n");
   }
+}
+
+}  // namespace
+
+Table summary_table(const RunSummary& s) {
+  // The widths the text form has always had; the name column grows with the longest name.
+  Table t;
+  t.columns = {{"algorithm", false, 14}, {"cases", true, 8},    {"wrong", true, 8},
+               {"err_med", true, 10},    {"err_p99", true, 10}, {"err_max", true, 10},
+               {"it_mean", true, 8},     {"it_max", true, 6},   {"ns/query", true, 10}};
+  for (const AlgorithmSummary& a : s.algorithms)
+    t.rows.push_back({summary_cells(a)});
+  return t;
+}
+
+void print_summary(std::ostream& out, const RunSummary& s) {
+  out << s.cases << " cases";
+  if (s.contact[0] + s.contact[1] + s.contact[2] > 0) {
+    out << " (exact: " << s.contact[0] << " separated, " << s.contact[1] << " touching band, "
+        << s.contact[2] << " intersecting)";
+  }
+  out << "\n\n";
+  render_text(out, summary_table(s));
+  print_terminations(out, s);
+  print_depth_errors(out, s);
+  print_failure_classes(out, s);
   out << "(errors are |distance − exact| / size, size = larger bounding-box diagonal; "
          "wrong = boolean differs from the exact one outside the touching band)\n";
 }
@@ -157,37 +180,44 @@ std::vector<std::pair<std::string, RunSummary>> FamilySummaryBuilder::build() co
   return out;
 }
 
+namespace {
+
+/// "step_limit=3 no_progress=1": the terminations other than converged, or "-".
+std::string stops_text(const AlgorithmSummary& a) {
+  std::string stops;
+  for (Termination t : kAllTerminations) {
+    const auto n = a.terminations[static_cast<std::size_t>(t)];
+    if (t != Termination::converged && n > 0)
+      stops += std::string(stops.empty() ? "" : " ") + std::string(to_string(t)) + "=" +
+               std::to_string(n);
+  }
+  return stops.empty() ? "-" : stops;
+}
+
+std::vector<std::string> family_cells(const std::string& family, const AlgorithmSummary& a) {
+  return {family,
+          a.name,
+          std::to_string(a.cases),
+          std::to_string(a.wrong_booleans),
+          a.distances ? format("%.2e", a.rel_error_max) : std::string("-"),
+          stops_text(a)};
+}
+
+}  // namespace
+
+Table family_table(const std::vector<std::pair<std::string, RunSummary>>& families) {
+  Table t;
+  t.columns = {{"family", false, 24}, {"algorithm", false, 14}, {"cases", true, 7},
+               {"wrong", true, 7},    {"err_max", true, 10},    {"not converged", false, 0, 2}};
+  for (const auto& [family, s] : families)
+    for (std::size_t i = 0; i < s.algorithms.size(); ++i)
+      t.rows.push_back({family_cells(family, s.algorithms[i]), i == 0});
+  return t;
+}
+
 void print_family_table(std::ostream& out,
                         const std::vector<std::pair<std::string, RunSummary>>& families) {
-  // The name columns are as wide as their longest entry (at least 24 and 14 characters).
-  int family_width = 24, algorithm_width = 14;
-  for (const auto& [family, s] : families) {
-    family_width = std::max(family_width, static_cast<int>(family.size()));
-    for (const AlgorithmSummary& a : s.algorithms)
-      algorithm_width = std::max(algorithm_width, static_cast<int>(a.name.size()));
-  }
-  char line[512];
-  std::snprintf(line, sizeof line, "%-*s %-*s %7s %7s %10s  %s\n", family_width, "family",
-                algorithm_width, "algorithm", "cases", "wrong", "err_max", "not converged");
-  out << line;
-  for (const auto& [family, s] : families) {
-    for (const AlgorithmSummary& a : s.algorithms) {
-      std::string stops;
-      for (Termination t : kAllTerminations) {
-        const auto n = a.terminations[static_cast<std::size_t>(t)];
-        if (t != Termination::converged && n > 0)
-          stops += std::string(stops.empty() ? "" : " ") + std::string(to_string(t)) + "=" +
-                   std::to_string(n);
-      }
-      std::snprintf(line, sizeof line, "%-*s %-*s %7llu %7llu %10s  %s\n", family_width,
-                    family.c_str(), algorithm_width, a.name.c_str(),
-                    static_cast<unsigned long long>(a.cases),
-                    static_cast<unsigned long long>(a.wrong_booleans),
-                    a.distances ? format("%.2e", a.rel_error_max).c_str() : "-",
-                    stops.empty() ? "-" : stops.c_str());
-      out << line;
-    }
-  }
+  render_text(out, family_table(families));
 }
 
 std::vector<OracleMethodCounts> oracle_method_counts(std::span<const CaseResult> results,

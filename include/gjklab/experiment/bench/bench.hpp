@@ -46,8 +46,13 @@ namespace gjklab::experiment::bench {
 
 inline constexpr const char* kHillClimbingSuffix = "+hc";
 
+/// Every suite, in the order a full run measures them (the default of BenchConfig::suites).
+std::vector<std::string> all_suites();
+/// "seed, random, scene": the suites, for messages.
+std::string suite_list();
+
 struct BenchConfig {
-  std::vector<std::string> suites = {"seed", "random", "scene"};
+  std::vector<std::string> suites = all_suites();
   /// Algorithm names (registry names, optionally with "+hc"); empty: every registered boolean
   /// and distance algorithm, plus hill-climbing rows of gjk-bool and gjk-johnson in the random
   /// suite.

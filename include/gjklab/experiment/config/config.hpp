@@ -182,6 +182,9 @@ struct ExperimentConfig {
   std::vector<std::string> result_family_names() const;
 };
 
+/// Every name `contact = "NAME"` of a contact family accepts, in order, "any" last.
+std::vector<std::string_view> contact_choices();
+
 /// Parses an experiment from TOML text; `source` names it in errors. Throws ConfigError.
 ExperimentConfig parse_experiment(const std::string& text, const std::string& source);
 /// Reads and parses an experiment file. Throws ConfigError (also for an unreadable file).

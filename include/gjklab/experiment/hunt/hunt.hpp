@@ -44,6 +44,8 @@ enum class HuntObjective : std::uint8_t {
 };
 
 std::string_view to_string(HuntObjective o);
+/// What the objective counts as a failure (and scores), in one phrase.
+std::string_view hunt_objective_meaning(HuntObjective o);
 std::optional<HuntObjective> hunt_objective_from_string(std::string_view name);
 /// Every objective's name, in declaration order (for the command line's choices).
 std::vector<std::string> hunt_objective_names();

@@ -28,6 +28,16 @@ std::vector<std::pair<std::string, std::string>> describe_options(const Algorith
 AlgorithmSpec spec_from_description(const std::string& name,
                                     const std::vector<std::pair<std::string, std::string>>& text);
 
+/// What an option's value may be, in the terms of the parser that reads it: its type
+/// ("integer", "number", "boolean", "direction" or "choice"), a choice's names in order, and
+/// the accepted values in words ("a number >= 0", "one of relative, absolute, duality_gap").
+struct OptionValues {
+  std::string_view type;
+  std::vector<std::string_view> choices;
+  std::string accepts;
+};
+OptionValues option_values(const OptionRow& row);
+
 /// Shortest decimal text that reads back as the same double.
 std::string round_trip(double x);
 

@@ -4,6 +4,7 @@
 // algorithm is one entry in src/experiment/registry/algorithms.cpp.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "gjklab/exact/oracle.hpp"
 #include "gjklab/experiment/registry/option_schema.hpp"
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/options.hpp"
@@ -107,6 +109,15 @@ Outcome from_boolean(const BooleanResult& r);
 Outcome from_distance(const DistanceResult& r);
 
 enum class AnswerKind { boolean, distance, exact };
+inline constexpr auto kAnswerKindNames = std::to_array<EnumName<AnswerKind>>({
+    {AnswerKind::boolean, "boolean"},
+    {AnswerKind::distance, "distance"},
+    {AnswerKind::exact, "exact"},
+});
+static_assert(in_value_order(kAnswerKindNames) && ends_at(kAnswerKindNames, AnswerKind::exact));
+constexpr std::string_view to_string(AnswerKind k) {
+  return name_of(kAnswerKindNames, k);
+}
 
 struct AlgorithmInfo {
   std::string_view name;
@@ -150,6 +161,31 @@ struct AlgorithmInfo {
   /// oracle: minutes per query on large clouds), and the benchmark then loops over run.
   BenchLoop bench = nullptr;
 };
+
+/// Where an algorithm comes from, so that tools can group its results (a study of gjklab's GJK
+/// variants against the peers, one colour range per group) without a list of names of their own.
+enum class AlgorithmGroup : std::uint8_t {
+  gjk,     ///< gjklab's own GJK queries: the ones that can be traced
+  own,     ///< gjklab's other queries (EPA, SAT, the certified query)
+  peer,    ///< a third-party library behind an adapter (AlgorithmInfo::peer)
+  oracle,  ///< the exact answer (AnswerKind::exact)
+};
+inline constexpr auto kAlgorithmGroupNames = std::to_array<EnumName<AlgorithmGroup>>({
+    {AlgorithmGroup::gjk, "gjk"},
+    {AlgorithmGroup::own, "own"},
+    {AlgorithmGroup::peer, "peer"},
+    {AlgorithmGroup::oracle, "oracle"},
+});
+static_assert(in_value_order(kAlgorithmGroupNames) &&
+              ends_at(kAlgorithmGroupNames, AlgorithmGroup::oracle));
+constexpr std::string_view to_string(AlgorithmGroup g) {
+  return name_of(kAlgorithmGroupNames, g);
+}
+
+/// The algorithm's group, from its entry: a peer is a peer, the exact kind is the oracle, and
+/// of gjklab's own queries the traceable ones are its GJK variants (a trace records GJK's
+/// simplex, so only a GJK query has one).
+AlgorithmGroup group_of(const AlgorithmInfo& algorithm);
 
 /// Whether the algorithm can run in another precision than double (options.precision).
 bool takes_precision(const AlgorithmInfo& algorithm);

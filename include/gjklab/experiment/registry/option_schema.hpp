@@ -51,6 +51,9 @@ enum class OptionUse : std::uint8_t {
 struct OptionRow {
   std::string_view key;
   OptionMember member;
+  /// What the value means, in one phrase with its unit (relative or absolute, squared or
+  /// not), for `gjklab names` and the tools that list options.
+  std::string_view meaning;
   OptionRange range = {};
   OptionUse use = OptionUse::setting;
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gjklab/experiment/cases/records.hpp"
+#include "gjklab/experiment/run/table.hpp"
 
 namespace gjklab::experiment {
 
@@ -55,7 +56,12 @@ class SummaryBuilder {
   std::vector<Column> columns_;
 };
 
-/// Prints the summary as an aligned text table.
+/// The summary's table: per algorithm, cases, wrong booleans, the median, 99th percentile and
+/// largest distance error relative to size, mean and largest iterations, median time.
+Table summary_table(const RunSummary& summary);
+
+/// Prints the summary: its table as aligned text, then each algorithm's terminations, depth
+/// errors and failure classes.
 void print_summary(std::ostream& out, const RunSummary& summary);
 
 /// One summary per family (index = CaseRecord::family), accumulated case by case.
@@ -72,8 +78,11 @@ class FamilySummaryBuilder {
   std::vector<SummaryBuilder> builders_;
 };
 
-/// Prints one row per family and algorithm: cases, wrong booleans, the largest distance
-/// error relative to size, and every termination other than converged.
+/// One row per family and algorithm, a family's rows a group: cases, wrong booleans, the
+/// largest distance error relative to size, and every termination other than converged.
+Table family_table(const std::vector<std::pair<std::string, RunSummary>>& families);
+
+/// Prints family_table as aligned text.
 void print_family_table(std::ostream& out,
                         const std::vector<std::pair<std::string, RunSummary>>& families);
 
