@@ -12,8 +12,8 @@
 #include <string>
 #include <string_view>
 
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "support.hpp"
 
 namespace {

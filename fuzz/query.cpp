@@ -35,8 +35,8 @@
 #include <vector>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "support.hpp"
 
 namespace {

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <ostream>
 
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/bench/bench.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 namespace gjklab::cli {
 

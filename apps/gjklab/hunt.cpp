@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "gjklab/experiment/config/config.hpp"
-#include "gjklab/experiment/run/driver.hpp"
 #include "gjklab/experiment/hunt/hunt.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 #include "gjklab/experiment/run/ranks.hpp"
 
 namespace gjklab::cli {

@@ -13,9 +13,9 @@
 #include <type_traits>
 #include <variant>
 
+#include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/registry/answer_fields.hpp"
-#include "gjklab/experiment/cases/cloud_io.hpp"
 
 namespace gjklab::cli {
 

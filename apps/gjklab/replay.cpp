@@ -8,11 +8,11 @@
 #include <ostream>
 #include <string>
 
+#include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
-#include "gjklab/experiment/archive/archive.hpp"
-#include "gjklab/experiment/config/config.hpp"
-#include "gjklab/experiment/cases/families.hpp"
 
 namespace gjklab::cli {
 

@@ -27,14 +27,13 @@ int run_and_report(simulation::SceneRun& run, const SimulateArgs& args, std::ost
   if (outcome == simulation::RunOutcome::stopped) {
     const std::string tmp = simulation::checkpoint_path(run.archive_path);
     err << "gjklab simulate: stopped after frame " << run.progress.done << " of "
-        << run.progress.target << ": " << tmp << " (continue with gjklab simulate --resume "
-        << tmp << ")\n";
+        << run.progress.target << ": " << tmp << " (continue with gjklab simulate --resume " << tmp
+        << ")\n";
     return stop_requested() ? 130 : 0;
   }
   simulation::print_scene_summary(run, out);
   if (outcome == simulation::RunOutcome::not_finite) {
-    err << "gjklab simulate: the state stopped being finite at frame " << run.progress.done
-        << "\n";
+    err << "gjklab simulate: the state stopped being finite at frame " << run.progress.done << "\n";
     return 1;
   }
   return 0;

@@ -1,9 +1,9 @@
 // The scene archive (`gjklab simulate`'s HDF5 file, format "gjklab-scene") as plain columns: one
 // struct per table, each member a column, one value (or `width` values) per row. The writer,
 // the reader (a checkpoint resumed, the experiments' `stream` family) and the schema tables of
-// docs/scenes.md (archive_schema_table("scene/GROUP")) all walk one table of column descriptors (src/experiment/archive/
-// scene_schema.hpp), so a column is named once. The simulation layer fills these structs; this
-// room knows no scene types.
+// docs/scenes.md (archive_schema_table("scene/GROUP")) all walk one table of column descriptors
+// (src/experiment/archive/scene_schema.hpp), so a column is named once. The simulation layer fills
+// these structs; this room knows no scene types.
 #pragma once
 
 #include <cstdint>
@@ -84,10 +84,10 @@ struct SceneQueryRows {
 
 /// shapes/ (with queries/): each distinct shape once, in the order bodies first use it.
 struct SceneShapeRows {
-  std::vector<double> vertices;       ///< body frame, 3 per row
-  std::vector<std::int64_t> offset;   ///< shape k is vertices[offset[k], offset[k+1])
+  std::vector<double> vertices;           ///< body frame, 3 per row
+  std::vector<std::int64_t> offset;       ///< shape k is vertices[offset[k], offset[k+1])
   std::vector<std::uint32_t> body_shape;  ///< per body
-  std::vector<double> radius;         ///< per shape: its swept radius (length units; 0: polytope)
+  std::vector<double> radius;  ///< per shape: its swept radius (length units; 0: polytope)
 };
 
 /// state/ (checkpoints only), per body: the integrator's state.
