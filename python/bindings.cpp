@@ -23,14 +23,14 @@
 #include <thread>
 #include <vector>
 
+#include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/cases/real_objects.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/registry/answer_fields.hpp"
-#include "gjklab/experiment/cases/cloud_io.hpp"
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/run/driver.hpp"
-#include "gjklab/experiment/cases/families.hpp"
-#include "gjklab/experiment/cases/real_objects.hpp"
 #include "gjklab/experiment/run/summary.hpp"
 #include "inputs.hpp"
 
@@ -230,7 +230,7 @@ py::dict algorithms() {
     entry["description"] = std::string(info.description);
     entry["peer"] = info.peer;
     entry["depth"] = info.depth;
-    entry["swept"] = info.run_swept != nullptr;
+    entry["swept"] = info.can.swept;
     entry["options"] = options;
     out[py::str(std::string(info.name))] = entry;
   }

@@ -148,26 +148,12 @@ std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& 
   return reduce_points(std::move(pts));
 }
 
-template <class Sub>
-DistanceResult run_gjk(const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm,
-                       const GjkDistanceOptions& options) {
-  return warm.empty() ? gjk_distance_with<Sub>(a, b, options)
-                      : gjk_distance_warm_with<Sub>(a, b, warm, options);
-}
-
-DistanceResult run_gjk(NarrowAlgorithm algorithm, const Polytope& a, const Polytope& b,
-                       std::span<const SimplexVertex> warm, const GjkDistanceOptions& options) {
-  switch (algorithm) {
-    case NarrowAlgorithm::gjk_johnson:
-      return run_gjk<JohnsonSubAlgorithm>(a, b, warm, options);
-    case NarrowAlgorithm::gjk_johnson_backup:
-      return run_gjk<JohnsonBackupSubAlgorithm>(a, b, warm, options);
-    case NarrowAlgorithm::gjk_sv:
-      return run_gjk<SignedVolumesSubAlgorithm>(a, b, warm, options);
-    case NarrowAlgorithm::gjk_voronoi:
-      return run_gjk<VoronoiSubAlgorithm>(a, b, warm, options);
-  }
-  return run_gjk<JohnsonSubAlgorithm>(a, b, warm, options);
+/// The scene's own query (kDefaultNarrowPhase): from `warm` when not empty, else cold.
+DistanceResult default_narrow_phase(const Polytope& a, const Polytope& b,
+                                    std::span<const SimplexVertex> warm,
+                                    const GjkDistanceOptions& options) {
+  return warm.empty() ? gjk_distance_with<JohnsonSubAlgorithm>(a, b, options)
+                      : gjk_distance_warm_with<JohnsonSubAlgorithm>(a, b, warm, options);
 }
 
 void check_settings(const WorldSettings& s) {
@@ -256,28 +242,34 @@ std::optional<Penetration> World::penetration(const Polytope& pa, const Polytope
                                               const DistanceResult& r) const {
   if (settings_.depth) return settings_.depth->run(pa, pb);
   // EPA starts from a GJK simplex that encloses the origin: the query's own, or a cold
-  // gjk-johnson's when the query was supplied (and has none).
+  // gjk-johnson's when the supplied query keeps none.
   DistanceResult start;
-  if (settings_.query) {
-    start = run_gjk(NarrowAlgorithm::gjk_johnson, pa, pb, {}, settings_.gjk);
+  const bool own_simplex = !settings_.query || settings_.query->warm_startable;
+  if (!own_simplex) {
+    start = default_narrow_phase(pa, pb, {}, settings_.gjk);
     if (!start.intersect) return std::nullopt;  // the two disagree: no simplex to start from
   }
   EpaPolytope ws;
-  const EpaResult e = epa_from_gjk(pa, pb, settings_.query ? start : r, EpaOptions{}, ws);
+  const EpaResult e = epa_from_gjk(pa, pb, own_simplex ? r : start, EpaOptions{}, ws);
   return Penetration{e.depth, e.normal, 0.5 * (e.witness_a + e.witness_b),
                      e.termination == Termination::converged};
+}
+
+DistanceResult World::narrow_query(const Polytope& pa, const Polytope& pb,
+                                   std::span<const SimplexVertex> warm) const {
+  return settings_.query ? settings_.query->run(pa, pb, warm)
+                         : default_narrow_phase(pa, pb, warm, settings_.gjk);
 }
 
 void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                     PairOutcome& out) const {
   const Polytope& pa = *world_hulls_[ia];
   const Polytope& pb = *world_hulls_[ib];
-  const std::span<const SimplexVertex> warm = settings_.warm_start && !settings_.query
+  const bool warm_startable = !settings_.query || settings_.query->warm_startable;
+  const std::span<const SimplexVertex> warm = settings_.warm_start && warm_startable
                                                   ? std::span<const SimplexVertex>(simplex)
                                                   : std::span<const SimplexVertex>();
-  const DistanceResult r = settings_.query
-                               ? settings_.query->run(pa, pb)
-                               : run_gjk(settings_.algorithm, pa, pb, warm, settings_.gjk);
+  const DistanceResult r = narrow_query(pa, pb, warm);
   out.a = ia;
   out.b = ib;
   out.iterations = r.iterations;
@@ -295,9 +287,8 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
     q.distance = r.distance;
   }
   if (settings_.measure_cold)
-    out.iterations_cold = settings_.query
-                              ? r.iterations  // a supplied query always runs cold
-                              : run_gjk(settings_.algorithm, pa, pb, {}, settings_.gjk).iterations;
+    out.iterations_cold = warm_startable ? narrow_query(pa, pb, {}).iterations
+                                         : r.iterations;  // the query always runs cold
   if (r.termination != Termination::converged) ++out.failed;
   const auto kept = r.simplex.vertices();
   simplex.assign(kept.begin(), kept.end());

@@ -37,7 +37,7 @@ experiment::SceneHeader header_of(const SceneRun& run, bool finite, bool complet
   h.dt = st.dt;
   h.contact_margin = st.contact_margin;
   h.broad_phase = std::string(scene::to_string(st.broad_phase));
-  h.narrow_algorithm = st.query ? st.query->name : std::string(scene::to_string(st.algorithm));
+  h.narrow_algorithm = st.query ? st.query->name : std::string(scene::kDefaultNarrowPhase);
   h.depth_algorithm = st.depth ? st.depth->name : std::string("epa");
   h.warm_start = st.warm_start;
   h.finite = finite;
@@ -156,8 +156,8 @@ void fill_archive(SceneRun& run, bool finite, bool complete) {
   a.header = header_of(run, finite, complete);
   a.provenance = experiment::build_provenance();
   a.bodies = bodies_of(run.setup);
-  a.shapes = run.setup.queries_every > 0 ? shapes_of(*run.setup.world)
-                                          : experiment::SceneShapeRows{};
+  a.shapes =
+      run.setup.queries_every > 0 ? shapes_of(*run.setup.world) : experiment::SceneShapeRows{};
   if (complete)
     a.state.reset();
   else

@@ -11,11 +11,11 @@
 #include <sstream>
 
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/registry/algorithm_options.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/cases/real_objects.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::simulation {
@@ -32,8 +32,7 @@ constexpr int kPlacementAttempts = 1000;
 /// of the family registry it may draw (experiment::find_body_cloud).
 const std::string& body_shapes() {
   static const std::string names = [] {
-    std::string out =
-        "box, cone, cylinder, uv_sphere, hull, mesh, real_object, ball, capsule";
+    std::string out = "box, cone, cylinder, uv_sphere, hull, mesh, real_object, ball, capsule";
     for (const experiment::ShapeGenerator& g : experiment::shape_generators())
       if (g.body_cloud) out += ", " + std::string(to_string(g.kind));
     return out;
@@ -261,25 +260,45 @@ scene::NarrowQuery registry_query(const SceneTable& n, const std::string& name,
            "unknown algorithm '" + name + "'; valid: " + experiment::algorithm_names());
   if (info->kind == experiment::AnswerKind::boolean)
     n.fail("algorithm", "'" + name + "' answers no distance, which contacts need");
-  return {name, [info, options](const Polytope& a, const Polytope& b) {
-            const experiment::Outcome o =
-                experiment::run_algorithm(*info, a, b, SweptRadii{}, options);
-            DistanceResult r;
-            r.intersect = o.intersect;
-            r.distance = o.intersect ? 0.0 : o.distance.value_or(0.0);
-            r.iterations = o.iterations;
-            r.support_calls = o.support_calls;
-            r.termination = o.termination;
-            if (o.witness_a && o.witness_b) {
-              r.witness_a = *o.witness_a;
-              r.witness_b = *o.witness_b;
-            } else if (!o.intersect) {
-              const DistanceResult g = gjk_distance(a, b);
-              r.witness_a = g.witness_a;
-              r.witness_b = g.witness_b;
-            }
-            return r;
-          }};
+  return {
+      name, [info, options](const Polytope& a, const Polytope& b, std::span<const SimplexVertex>) {
+        const experiment::Outcome o = experiment::run_algorithm(*info, a, b, SweptRadii{}, options);
+        DistanceResult r;
+        r.intersect = o.intersect;
+        r.distance = o.intersect ? 0.0 : o.distance.value_or(0.0);
+        r.iterations = o.iterations;
+        r.support_calls = o.support_calls;
+        r.termination = o.termination;
+        if (o.witness_a && o.witness_b) {
+          r.witness_a = *o.witness_a;
+          r.witness_b = *o.witness_b;
+        } else if (!o.intersect) {
+          const DistanceResult g = gjk_distance(a, b);
+          r.witness_a = g.witness_a;
+          r.witness_b = g.witness_b;
+        }
+        return r;
+      }};
+}
+
+/// A GJK distance variant as the scene's narrow phase (its registry entry's narrow_phase):
+/// warm-startable, with the scene's GJK options.
+scene::NarrowQuery warm_startable_query(const experiment::AlgorithmInfo& info,
+                                        const GjkDistanceOptions& gjk) {
+  const experiment::NarrowPhaseQuery query = info.narrow_phase;
+  return {std::string(info.name),
+          [query, gjk](const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm) {
+            return query(a, b, warm, gjk);
+          },
+          true};
+}
+
+/// "gjk-johnson, gjk-johnson-backup, …": the algorithms a scene can start warm.
+std::string warm_startable_names() {
+  std::string names;
+  for (const experiment::AlgorithmInfo& a : experiment::algorithms())
+    if (a.narrow_phase) names += (names.empty() ? "" : ", ") + std::string(a.name);
+  return names;
 }
 
 /// A registry algorithm that reports a depth, as the scene's depth query (with `options`): its
@@ -334,30 +353,31 @@ void read_settings(const SceneTable& root, scene::WorldSettings& s) {
   const SceneTable n = root.child("narrow_phase");
   n.allow_only({"algorithm", "depth_algorithm", "options", "depth_options", "warm_start",
                 "measure_cold", "max_iterations", "threads"});
-  const std::string name = n.string("algorithm", "gjk-johnson");
-  if (const auto a = scene::narrow_algorithm_from_string(name)) {
-    s.algorithm = *a;
+  s.measure_cold = n.boolean("measure_cold", false);
+  s.threads = static_cast<int>(n.integer("threads", 1, 1, 1024));
+  s.gjk.max_iterations =
+      static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
+  const std::string name = n.string("algorithm", std::string(scene::kDefaultNarrowPhase));
+  const experiment::AlgorithmInfo* info = experiment::find_algorithm(name);
+  if (info && info->narrow_phase) {
+    s.query = warm_startable_query(*info, s.gjk);
     s.warm_start = n.boolean("warm_start", true);
   } else {
     s.query = registry_query(n, name, options_of(n.child("options"), name));
     if (n.boolean("warm_start", false))
       n.fail("warm_start", "'" + name +
                                "' cannot run warm-started; the GJK distance variants can: " +
-                               names_list(scene::kNarrowAlgorithmNames));
+                               warm_startable_names());
     s.warm_start = false;
   }
   if (const std::string depth = n.string("depth_algorithm", ""); !depth.empty())
     s.depth = registry_depth_query(n, depth, options_of(n.child("depth_options"), depth));
   else if (n.has("depth_options"))
     n.fail("depth_options", "needs depth_algorithm");
-  if (!s.query && n.has("options"))
+  if (s.query->warm_startable && n.has("options"))
     n.fail("options",
            "only for an algorithm other than the GJK variants (which take "
            "max_iterations)");
-  s.measure_cold = n.boolean("measure_cold", false);
-  s.threads = static_cast<int>(n.integer("threads", 1, 1, 1024));
-  s.gjk.max_iterations =
-      static_cast<int>(n.integer("max_iterations", s.gjk.max_iterations, 1, 100000));
 }
 
 /// A funnel of `segments` static slabs: each a convex hull of 8 points between the cone of
@@ -389,9 +409,10 @@ std::vector<std::vector<Vec3>> funnel_panels(const SceneTable& t) {
 std::string body_shape_name(const SceneTable& t, SceneSetup& s) {
   const std::string shape = t.string("shape", "");
   if (shape != "sphere") return shape;
-  s.warnings.push_back(t.message(
-      "shape", "\"sphere\" is deprecated in scene files: it builds the UV-sphere polytope, "
-               "now \"uv_sphere\"; a true sphere is \"ball\", as in experiment files"));
+  s.warnings.push_back(
+      t.message("shape",
+                "\"sphere\" is deprecated in scene files: it builds the UV-sphere polytope, "
+                "now \"uv_sphere\"; a true sphere is \"ball\", as in experiment files"));
   return "uv_sphere";
 }
 

@@ -52,7 +52,7 @@ void compare(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool depth,
   CHECK(same(c.distance_squared, q.distance_squared));
   CHECK(c.intersect == q.intersect);
   // gjk-certified is never wrong: its boolean and its correctly rounded distance are exact.
-  const experiment::Outcome g = gjk_certified.run(pa, pb, {});
+  const experiment::Outcome g = experiment::run_algorithm(gjk_certified, pa, pb, {}, {});
   CHECK(g.intersect == q.intersect);
   CHECK(*g.distance == q.distance);
   ++t.pairs;

@@ -83,7 +83,7 @@ TEST_CASE("GJK agrees with the exact oracle on 2000 seeded random pairs", "[prop
 
     for (const auto& algorithm : algorithms) {
       if (algorithm.kind == experiment::AnswerKind::exact) continue;
-      const auto o = algorithm.run(a, b, {});
+      const auto o = experiment::run_algorithm(algorithm, a, b, {}, {});
       Tally& t = tallies[std::string(algorithm.name)];
       if (o.termination != Termination::converged) ++t.terminations_not_converged;
       if (o.intersect != exact.intersect && outside_band()) {

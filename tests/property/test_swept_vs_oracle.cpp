@@ -86,7 +86,7 @@ TEST_CASE("sphere-swept shapes agree with the exact oracle on 1000 seeded random
         exact.intersect ? *exact.depth <= kBand * size : exact.distance <= kBand * size;
 
     for (const auto& algorithm : experiment::algorithms()) {
-      if (!algorithm.run_swept || algorithm.kind == experiment::AnswerKind::exact) continue;
+      if (!algorithm.can.swept || algorithm.kind == experiment::AnswerKind::exact) continue;
       const auto o = experiment::run_algorithm(algorithm, pa, pb, radii, {});
       Tally& t = tallies[std::string(algorithm.name)];
       if (o.termination != Termination::converged) ++t.not_converged;

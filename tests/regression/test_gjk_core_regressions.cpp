@@ -8,8 +8,8 @@
 
 #include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/trace.hpp"
@@ -28,7 +28,7 @@ void check_every_variant(const experiment::PointCase& c, const exact::OracleAnsw
   const double size = pair_size(c.a, c.b);
   for (const char* name : kDistanceVariants) {
     INFO(name);
-    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    const auto o = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK(o.intersect == exact.intersect);
     REQUIRE(o.distance.has_value());
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * size);
@@ -130,7 +130,7 @@ TEST_CASE("rotated boxes face to face, 4.1e-11 apart: a flat tetrahedron is not 
   const double size = pair_size(c.a, c.b);
   for (const char* name : kDistanceVariants) {
     INFO(name);
-    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    const auto o = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK_FALSE(o.intersect);
     REQUIRE(o.distance.has_value());
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-12 * size);

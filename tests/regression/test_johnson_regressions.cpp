@@ -3,8 +3,8 @@
 
 #include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 
@@ -54,13 +54,13 @@ TEST_CASE("contact pair separated by 5.6e-14: tetrahedron holds the origin only 
   for (const auto& algorithm : experiment::algorithms()) {
     if (algorithm.kind != experiment::AnswerKind::distance || algorithm.peer) continue;
     INFO(algorithm.name);
-    const auto o = algorithm.run(a, b, fixed);
+    const auto o = experiment::run_algorithm(algorithm, a, b, {}, fixed);
     CHECK_FALSE(o.intersect);
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
     CHECK(o.termination == Termination::converged);
     // From the centre difference the simplex reaches the closest face directly; 5.6e-14 is
     // below the contact tolerance (1e-13 of the simplex's scale), so contact is an answer too.
-    const auto centre = algorithm.run(a, b, {});
+    const auto centre = experiment::run_algorithm(algorithm, a, b, {}, {});
     CHECK(std::abs(*centre.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));
     CHECK(centre.termination == Termination::converged);
   }

@@ -8,8 +8,8 @@
 
 #include "../support/regression_case.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/gjk/swept.hpp"
 
 using namespace gjklab;
@@ -120,7 +120,7 @@ TEST_CASE("fcl issue 388, small box 1.7e-8 from a tall thin box: EPA's GJK phase
   for (const char* name : {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi",
                            "gjk-nesterov", "gjk-polyak", "epa", "gjk-certified"}) {
     INFO(name);
-    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    const auto o = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK_FALSE(o.intersect);
     REQUIRE(o.distance.has_value());
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * size);
@@ -284,7 +284,7 @@ TEST_CASE("fcl issue 398, thin box flush on a box 1.1e-16 apart: answers within 
   for (const auto& algorithm : experiment::algorithms()) {
     if (!own_floating_point(algorithm)) continue;
     INFO(algorithm.name);
-    const auto o = algorithm.run(a, b, {});
+    const auto o = experiment::run_algorithm(algorithm, a, b, {}, {});
     CHECK(o.termination == Termination::converged);
     if (o.distance) CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * size);
   }
@@ -306,11 +306,11 @@ TEST_CASE("parallel ridges 2e-8 deep: Johnson's answer proven by its double-word
   CHECK(*exact.depth == Approx(2.01531e-08).epsilon(1e-6));
   for (const char* name : {"gjk-johnson", "gjk-johnson-backup"}) {
     INFO(name);
-    const auto johnson = experiment::find_algorithm(name)->run(a, b, {});
+    const auto johnson = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK(johnson.intersect);
     CHECK(johnson.termination == Termination::converged);
   }
-  const auto epa = experiment::find_algorithm("epa")->run(a, b, {});
+  const auto epa = experiment::run_algorithm(*experiment::find_algorithm("epa"), a, b, {}, {});
   CHECK(epa.intersect);
   CHECK(epa.termination == Termination::converged);
   REQUIRE(epa.depth.has_value());
@@ -329,7 +329,7 @@ TEST_CASE("crossing wedges 1.9e-8 deep: epa's depth is right or flagged", "[regr
   REQUIRE(exact.intersect);
   REQUIRE(exact.depth.has_value());
   CHECK(*exact.depth == Approx(1.896726158175777e-08).epsilon(1e-9));
-  const auto epa = experiment::find_algorithm("epa")->run(a, b, {});
+  const auto epa = experiment::run_algorithm(*experiment::find_algorithm("epa"), a, b, {}, {});
   CHECK(epa.intersect);
   REQUIRE(epa.depth.has_value());
   const bool depth_right = std::abs(*epa.depth - *exact.depth) <= 1e-6 * *exact.depth;
@@ -354,7 +354,7 @@ TEST_CASE("needle triangles: no gjklab distance below the exact one, no false co
     const double size = pair_size(c.a, c.b);
     for (const auto& algorithm : experiment::algorithms()) {
       if (!own_floating_point(algorithm)) continue;
-      const auto o = algorithm.run(a, b, {});
+      const auto o = experiment::run_algorithm(algorithm, a, b, {}, {});
       if (!o.distance) continue;  // gjk-bool
       INFO(file << " with " << algorithm.name << ": " << *o.distance << " for " << exact.distance);
       CHECK_FALSE(o.intersect);

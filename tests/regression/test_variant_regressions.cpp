@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 #include "../support/regression_case.hpp"
 
@@ -22,7 +22,7 @@ TEST_CASE("GJK distance variants on the flat tetrahedron near contact (102 vs 9 
   for (const char* name : {"gjk-johnson", "gjk-johnson-backup", "gjk-sv", "gjk-voronoi",
                            "gjk-nesterov", "gjk-polyak"}) {
     INFO(name);
-    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    const auto o = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK_FALSE(o.intersect);
     REQUIRE(o.distance.has_value());
     CHECK(std::abs(*o.distance - exact.distance) <= 1e-10 * pair_size(c.a, c.b));

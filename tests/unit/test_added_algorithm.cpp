@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/geometry/support.hpp"
 #include "gjklab/gjk/gjk_boolean.hpp"
@@ -23,25 +23,33 @@ namespace {
 
 // ---- the algorithm: boolean GJK that always starts from its fixed direction ----
 
+/// Its own options, in a struct the library does not know: stored in AlgorithmOptions::added
+/// and reached by its schema's row.
+struct FixedStartOptions {
+  int max_iterations = GjkBooleanDefaults::max_iterations;
+};
+
+constexpr OptionRow kFixedStartRows[] = {
+    {"max_iterations",
+     [](AlgorithmOptions& o) -> int& { return o.added.get<FixedStartOptions>().max_iterations; },
+     "iteration bound of the fixed-start query"},
+};
+
 GjkBooleanOptions fixed_start(const AlgorithmOptions& o) {
-  GjkBooleanOptions options = o.gjk_boolean;
+  GjkBooleanOptions options;
   options.start = GjkBooleanStart::fixed_direction;
+  options.max_iterations = o.added.value<FixedStartOptions>().max_iterations;
   return options;
 }
 
-Outcome run_fixed(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_boolean(gjk_intersect(a, b, fixed_start(o)));
-}
-
-Outcome trace_fixed(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                    TraceRecorder& trace) {
-  return from_boolean(gjk_intersect(a, b, fixed_start(o), trace));
-}
-
-Outcome run_fixed_swept(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                        const AlgorithmOptions& o) {
+Outcome run_fixed(const QueryRequest& q) {
+  const GjkBooleanOptions o = fixed_start(q.options);
+  auto query = [&](const auto& a, const auto& b) {
+    return q.trace ? gjk_intersect(a, b, o, *q.trace) : gjk_intersect(a, b, o);
+  };
+  if (!q.radii.any()) return from_boolean(query(q.a, q.b));
   return from_boolean(
-      gjk_intersect(SphereSwept<Polytope>(a, r.a), SphereSwept<Polytope>(b, r.b), fixed_start(o)));
+      query(SphereSwept<Polytope>(q.a, q.radii.a), SphereSwept<Polytope>(q.b, q.radii.b)));
 }
 
 BenchTally bench_fixed(std::span<const BenchPair> pairs, const AlgorithmOptions& o, int reps) {
@@ -62,9 +70,8 @@ AlgorithmInfo fixed_start_entry() {
           .kind = AnswerKind::boolean,
           .description = "gjk-bool started from its fixed direction whatever `start` says",
           .run = run_fixed,
-          .run_traced = trace_fixed,
-          .run_swept = run_fixed_swept,
-          .options = gjk_boolean_option_schema(),
+          .can = {.swept = true, .traced = true},
+          .options = kFixedStartRows,
           .bench = bench_fixed};
 }
 
@@ -124,16 +131,34 @@ TEST_CASE("added algorithm: one file and one line make it a registered algorithm
     CHECK(intersecting > 0);  // both kinds of pair were asked
     CHECK(intersecting < static_cast<int>(pairs.size()));
 
-    // Experiment files name it and set its options, which its schema describes.
+    // Experiment files name it and set its own options, which its schema describes and
+    // replay reads back; the library's structs are untouched.
     const ExperimentConfig config = parse_experiment(
         "name = \"added\"\nseed = 1\ncases = 1\n[[family]]\nshape = \"box\"\n"
         "[[algorithm]]\nname = \"test-gjk-bool-fixed\"\nmax_iterations = 3\n",
         "added.toml");
     REQUIRE(config.algorithms.size() == 1);
-    CHECK(config.algorithms[0].options.gjk_boolean.max_iterations == 3);
+    const AlgorithmOptions& parsed = config.algorithms[0].options;
+    CHECK(parsed.added.value<FixedStartOptions>().max_iterations == 3);
+    CHECK(parsed.gjk_boolean.max_iterations == AlgorithmOptions{}.gjk_boolean.max_iterations);
     const auto described = describe_options(config.algorithms[0]);
     CHECK(std::find(described.begin(), described.end(),
                     std::pair<std::string, std::string>{"max_iterations", "3"}) != described.end());
+    const AlgorithmSpec replayed = spec_from_description("test-gjk-bool-fixed", described);
+    CHECK(replayed.options.added.value<FixedStartOptions>().max_iterations == 3);
+    CHECK_THROWS_AS(parse_experiment("name = \"added\"\nseed = 1\ncases = 1\n[[family]]\n"
+                                     "shape = \"box\"\n[[algorithm]]\n"
+                                     "name = \"test-gjk-bool-fixed\"\nmax_iterations = 0\n",
+                                     "added.toml"),
+                    ConfigError);
+    // Its bound is its own: at one iteration it stops where gjk-bool's default would go on.
+    const AlgorithmOptions one =
+        spec_from_description("test-gjk-bool-fixed", {{"max_iterations", "1"}}).options;
+    int stopped = 0;
+    for (const BenchPair& p : pairs)
+      stopped +=
+          run_algorithm(*algorithm, *p.a, *p.b, {}, one).termination == Termination::step_limit;
+    CHECK(stopped > 0);
 
     // The benchmark finds its direct loop in the entry, and it makes the registry's queries.
     const BenchLoop loop = find_bench_loop("test-gjk-bool-fixed");

@@ -64,7 +64,7 @@ TEST_CASE("every algorithm answers the analytic cases", "[unit][analytic]") {
   for (const AnalyticCase& c : analytic_cases()) {
     for (const auto& algorithm : experiment::algorithms()) {
       INFO(c.name << " with " << algorithm.name);
-      const auto o = algorithm.run(c.a, c.b, {});
+      const auto o = experiment::run_algorithm(algorithm, c.a, c.b, {}, {});
       CHECK(o.intersect == c.intersect);
       CHECK(o.termination == Termination::converged);
       // Peers (FCL, Bullet) stop at their own, looser tolerances.
@@ -93,7 +93,7 @@ TEST_CASE("touching boxes: shared face is an intersection for the exact oracle a
   const Polytope b = a.transformed(Pose::from_translation(Vec3(1, 0.25, 0.5)));
   for (const char* name : {"exact", "gjk-johnson", "gjk-bool"}) {
     INFO(name);
-    const auto o = experiment::find_algorithm(name)->run(a, b, {});
+    const auto o = experiment::run_algorithm(*experiment::find_algorithm(name), a, b, {}, {});
     CHECK(o.intersect);
     if (o.distance) CHECK(*o.distance == 0);
   }
@@ -105,11 +105,12 @@ TEST_CASE("gjk-johnson stops at the step limit and says so", "[unit][analytic]")
       shapes::uv_sphere().transformed(rotation_about(Vec3(1, 2, 3), 0.7, Vec3(1.0001, 0.01, 0.02)));
   experiment::AlgorithmOptions options;
   options.set_max_iterations(2);
-  const auto o = experiment::find_algorithm("gjk-johnson")->run(a, b, options);
+  const auto o =
+      experiment::run_algorithm(*experiment::find_algorithm("gjk-johnson"), a, b, {}, options);
   CHECK(o.termination == Termination::step_limit);
   CHECK(o.iterations == 2);
   CHECK(o.support_calls == 3);
   // The reported distance is still an upper bound of the true one.
-  const auto exact = experiment::find_algorithm("exact")->run(a, b, {});
+  const auto exact = experiment::run_algorithm(*experiment::find_algorithm("exact"), a, b, {}, {});
   CHECK(*o.distance >= *exact.distance);
 }

@@ -13,8 +13,8 @@
 
 #include "../support/random_pairs.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/peers/libccd.hpp"
@@ -256,7 +256,7 @@ TEST_CASE("depth peers against the exact oracle on seeded random pairs (reported
     const double margin = exact.intersect ? *exact.depth : exact.distance;
     for (const auto& algorithm : experiment::algorithms()) {
       if (!algorithm.peer || !algorithm.depth) continue;
-      const experiment::Outcome o = algorithm.run(a, b, {});
+      const experiment::Outcome o = experiment::run_algorithm(algorithm, a, b, {}, {});
       Tally& t = tally[std::string(algorithm.name)];
       ++t.queries;
       if (o.termination != Termination::converged) ++t.not_converged;

@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
+#include <span>
+#include <string>
 #include <vector>
 
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/shapes.hpp"
 #include "gjklab/scene/world.hpp"
 
@@ -224,10 +228,48 @@ TEST_CASE("scene physics: settings out of range are refused", "[unit][scene]") {
   s = {};
   s.baumgarte = 2;
   CHECK_THROWS_AS(World(s), std::invalid_argument);
-  for (auto a : values_of(kNarrowAlgorithmNames))
-    CHECK(narrow_algorithm_from_string(to_string(a)) == a);
-  CHECK(to_string(NarrowAlgorithm::gjk_johnson_backup) == "gjk-johnson-backup");
-  CHECK_FALSE(narrow_algorithm_from_string("gjk-bool"));
+}
+
+TEST_CASE("scene physics: the scene's own narrow phase is the registry's algorithm of its name",
+          "[unit][scene]") {
+  // The scene layer names one query, its default; the registry's entry of that name, supplied
+  // as the narrow phase, must give the same simulation bit for bit, warm starts included.
+  const experiment::AlgorithmInfo* info = experiment::find_algorithm(kDefaultNarrowPhase);
+  REQUIRE(info != nullptr);
+  REQUIRE(info->narrow_phase != nullptr);
+  auto run = [](std::optional<NarrowQuery> query) {
+    WorldSettings s;
+    s.query = std::move(query);
+    World world(s);
+    add_ground(world);
+    std::mt19937_64 rng(11);
+    const auto cone = shape_of(shapes::cone());
+    const auto box = shape_of(shapes::box());
+    for (int i = 0; i < 8; ++i)
+      world.add(make_dynamic_body(i % 2 ? cone : box, 900, random_rotation(rng),
+                                  Vec3(0.3 * (i % 3), 0.2 * (i % 4), 0.8 + 1.1 * i)));
+    std::size_t queries = 0;
+    for (int frame = 0; frame < 200; ++frame)
+      queries += world.step().narrow_queries;
+    CHECK(queries > 100);
+    return world.bodies();
+  };
+  const GjkDistanceOptions gjk{};
+  const auto own = run(std::nullopt);
+  const auto registry = run(NarrowQuery{
+      std::string(info->name),
+      [info, gjk](const Polytope& a, const Polytope& b, std::span<const SimplexVertex> warm) {
+        return info->narrow_phase(a, b, warm, gjk);
+      },
+      true});
+  REQUIRE(own.size() == registry.size());
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    CHECK(own[i].pose.translation == registry[i].pose.translation);
+    CHECK(own[i].pose.rotation == registry[i].pose.rotation);
+  }
+  // Exactly the GJK distance variants can be warm-started, so exactly they have the query.
+  for (const experiment::AlgorithmInfo& a : experiment::algorithms())
+    CHECK((a.narrow_phase != nullptr) == a.can.warm);
 }
 
 TEST_CASE("scene physics: the narrow phase in threads gives the same simulation bit for bit",

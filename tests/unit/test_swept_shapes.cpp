@@ -10,10 +10,10 @@
 
 #include "../support/cli_run.hpp"
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/archive/archive.hpp"
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/gjk/swept.hpp"
 
 using namespace gjklab;
@@ -196,7 +196,7 @@ TEST_CASE("every algorithm that handles sphere-swept shapes answers the closed f
   const experiment::AlgorithmOptions options;
   int algorithms_run = 0;
   for (const experiment::AlgorithmInfo& algorithm : experiment::algorithms()) {
-    if (!algorithm.run_swept) continue;
+    if (!algorithm.can.swept) continue;
     ++algorithms_run;
     for (const SweptCase& c : swept_cases()) {
       INFO(algorithm.name << ": " << c.name);

@@ -26,12 +26,12 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
-#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/gjk/options.hpp"
 #include "gjklab/gjk/result.hpp"
 #include "gjklab/gjk/simplex.hpp"
@@ -40,35 +40,22 @@
 
 namespace gjklab::scene {
 
-/// The distance algorithms the narrow phase can run warm-started, by their registry names.
-enum class NarrowAlgorithm : std::uint8_t {
-  gjk_johnson,         ///< "gjk-johnson"
-  gjk_johnson_backup,  ///< "gjk-johnson-backup"
-  gjk_sv,              ///< "gjk-sv"
-  gjk_voronoi,         ///< "gjk-voronoi"
-};
-inline constexpr auto kNarrowAlgorithmNames = std::to_array<EnumName<NarrowAlgorithm>>({
-    {NarrowAlgorithm::gjk_johnson, "gjk-johnson"},
-    {NarrowAlgorithm::gjk_johnson_backup, "gjk-johnson-backup"},
-    {NarrowAlgorithm::gjk_sv, "gjk-sv"},
-    {NarrowAlgorithm::gjk_voronoi, "gjk-voronoi"},
-});
-static_assert(in_value_order(kNarrowAlgorithmNames) &&
-              ends_at(kNarrowAlgorithmNames, NarrowAlgorithm::gjk_voronoi));
+/// The narrow phase's name for its own query, used when the settings supply none: GJK distance
+/// with Johnson's sub-algorithm, warm-started, as the registry's algorithm of that name runs it.
+inline constexpr std::string_view kDefaultNarrowPhase = "gjk-johnson";
 
-constexpr std::string_view to_string(NarrowAlgorithm a) {
-  return name_of(kNarrowAlgorithmNames, a);
-}
-inline std::optional<NarrowAlgorithm> narrow_algorithm_from_string(std::string_view name) {
-  return value_named(kNarrowAlgorithmNames, name);
-}
-
-/// A narrow-phase query the caller supplies, for algorithms the scene layer cannot name (the
-/// registry lies above it): `run` answers one pair of world hulls cold. Must be safe to call
-/// from several threads at once.
+/// A narrow-phase query the caller supplies (the scene layer names no algorithm: the registry
+/// lies above it). Must be safe to call from several threads at once.
 struct NarrowQuery {
   std::string name;  ///< recorded in archives
-  std::function<DistanceResult(const Polytope& a, const Polytope& b)> run;
+  /// Answers one pair of world hulls: from `warm` (the pair's simplex of its previous query,
+  /// vertex indices into a's and b's lists) when not empty, else cold.
+  std::function<DistanceResult(const Polytope& a, const Polytope& b,
+                               std::span<const SimplexVertex> warm)>
+      run;
+  /// run takes a warm start, and its answer's simplex (kept for the pair's next query) starts
+  /// EPA; false: it is always called cold, and EPA starts from a cold gjk-johnson query.
+  bool warm_startable = false;
 };
 
 /// The penetration of an intersecting pair: depth (length units, ≥ 0), the unit normal from A
@@ -101,14 +88,16 @@ struct WorldSettings {
   double baumgarte = 0.2;
   /// Approach speed (length/s) below which restitution is ignored (resting contacts).
   double restitution_threshold = 0.5;
-  NarrowAlgorithm algorithm = NarrowAlgorithm::gjk_johnson;
-  /// Set: this query answers every pair instead of `algorithm`, cold (warm_start is ignored);
-  /// intersecting pairs then take EPA from a cold gjk-johnson query unless `depth` is set.
+  /// Set: this query answers every pair; absent: the scene's own kDefaultNarrowPhase, with
+  /// `gjk`. Intersecting pairs take EPA from the query's simplex (or from a cold gjk-johnson
+  /// query's, see NarrowQuery::warm_startable) unless `depth` is set.
   std::optional<NarrowQuery> query;
   /// Set: the depth of intersecting pairs comes from this query instead of EPA.
   std::optional<DepthQuery> depth;
+  /// The options of the scene's own queries: kDefaultNarrowPhase and EPA's cold start.
   GjkDistanceOptions gjk{};
-  /// Start each query from the pair's previous simplex (false: every query cold).
+  /// Start each query from the pair's previous simplex (false: every query cold); only a
+  /// warm-startable query is ever started warm.
   bool warm_start = true;
   /// Also run every query cold, only to count its iterations (StepStats::iterations_cold_mean):
   /// the warm-versus-cold comparison on the same stream, at the price of a second query.
@@ -243,6 +232,10 @@ class World {
   /// previous simplex, which it replaces (safe to run for different pairs in parallel).
   void collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                PairOutcome& out) const;
+  /// The narrow phase's query of a pair (the supplied one, else kDefaultNarrowPhase), from
+  /// `warm` when not empty.
+  DistanceResult narrow_query(const Polytope& pa, const Polytope& pb,
+                              std::span<const SimplexVertex> warm) const;
   /// The penetration of a pair the narrow-phase query found intersecting (r): the supplied
   /// depth query's, else EPA's; nullopt when there is none.
   std::optional<Penetration> penetration(const Polytope& pa, const Polytope& pb,

@@ -1,11 +1,11 @@
 #include "gjklab/experiment/config/config.hpp"
 
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/cases/real_objects.hpp"
 #include "gjklab/experiment/cases/scene_stream.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
 
 #include <toml++/toml.h>
 
@@ -56,7 +56,7 @@ constexpr std::int64_t kMaxRepetitions = 1'000'000;
 std::string swept_algorithm_names() {
   std::vector<std::string_view> names;
   for (const AlgorithmInfo& a : algorithms())
-    if (a.run_swept) names.push_back(a.name);
+    if (a.can.swept) names.push_back(a.name);
   return join(names);
 }
 
@@ -393,7 +393,7 @@ void read_algorithms(const Section& top, ExperimentConfig& config) {
     const Section s = top.child(t, "algorithm[" + std::to_string(i) + "]");
     AlgorithmSpec spec = read_algorithm(s);
     spec.options.oracle = config.oracle_options(config.depth);
-    if (config.has_swept_shapes() && !find_algorithm(spec.name)->run_swept)
+    if (config.has_swept_shapes() && !find_algorithm(spec.name)->can.swept)
       s.fail(*s.find("name"), "name",
              "'" + spec.name +
                  "' answers for polytopes only, and this experiment has sphere-swept shapes "

@@ -368,7 +368,6 @@ constexpr auto kSatRows = std::to_array<OptionRow>({
      "(the best SAT lower bound of the distance)"},
 });
 
-#ifdef GJKLAB_HAVE_FCL
 constexpr auto kFclRows = std::to_array<OptionRow>({
     {"max_iterations", [](AlgorithmOptions& o) -> int& { return o.fcl.max_iterations; },
      "GJK iteration bound of both FCL solvers"},
@@ -379,7 +378,6 @@ constexpr auto kFclRows = std::to_array<OptionRow>({
     {"epa_max_vertices", [](AlgorithmOptions& o) -> int& { return o.fcl.epa_max_vertices; },
      "fcl-indep's EPA: bound on the vertices of its polytope"},
 });
-#endif
 
 // The oracle's depth flag comes from the experiment's [oracle] table; the archive records it
 // with the `exact` algorithm so that replay asks for the same answer.
@@ -430,11 +428,9 @@ OptionSchema libccd_depth_option_schema() {
 OptionSchema sat_option_schema() {
   return kSatRows;
 }
-#ifdef GJKLAB_HAVE_FCL
 OptionSchema fcl_option_schema() {
   return kFclRows;
 }
-#endif
 OptionSchema exact_option_schema() {
   return kExactRows;
 }

@@ -22,10 +22,8 @@ void AlgorithmOptions::set_max_iterations(int n) {
   libccd.max_depth_iterations = n;
   epa.max_iterations = n;
   epa.max_faces = 4 + 2 * std::min(n, 1 << 24);
-#ifdef GJKLAB_HAVE_FCL
   fcl.max_iterations = n;
   fcl.epa_max_iterations = n;
-#endif
 }
 
 Outcome from_boolean(const BooleanResult& r) {
@@ -55,115 +53,103 @@ namespace {
 
 using namespace registry_parts;
 
-Outcome run_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_boolean(gjk_intersect(a, b, o.gjk_boolean));
+using SweptPolytope = SphereSwept<Polytope>;
+
+/// Whether the request is in double; an entry that can run in another precision checks this
+/// first and hands the others to at_precision (queries.hpp).
+bool in_double(const QueryRequest& q) {
+  return q.options.precision == ScalarPrecision::double_float;
 }
 
-Outcome trace_gjk_bool(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                       TraceRecorder& trace) {
-  return from_boolean(gjk_intersect(a, b, o.gjk_boolean, trace));
+Outcome gjk_bool_query(const QueryRequest& q) {
+  if (!in_double(q)) return at_precision<GjkBoolIn>(q);
+  const GjkBooleanOptions& o = q.options.gjk_boolean;
+  auto query = [&](const auto& a, const auto& b) {
+    return q.trace ? gjk_intersect(a, b, o, *q.trace) : gjk_intersect(a, b, o);
+  };
+  if (!q.radii.any()) return from_boolean(query(q.a, q.b));
+  return from_boolean(query(SweptPolytope(q.a, q.radii.a), SweptPolytope(q.b, q.radii.b)));
 }
 
+/// A GJK distance query from its core (a type whose run() takes shapes of any precision, traced
+/// or not; see SubAlgorithmQuery); swept shapes: on the cores, shifted by the radii.
 template <class Core>
-Outcome run_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return from_distance(Core::run(a, b, o, NoTrace{}));
-}
-template <class Core>
-Outcome trace_distance(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                       TraceRecorder& trace) {
-  return from_distance(Core::run(a, b, o, trace));
-}
-template <class Core>
-Outcome run_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                           const AlgorithmOptions& o) {
-  return from_distance(swept_distance(Core::run(a, b, o, NoTrace{}), r));
-}
-template <class Core>
-Outcome trace_swept_distance(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                             const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_distance(swept_distance(Core::run(a, b, o, trace), r));
+Outcome distance_query(const QueryRequest& q) {
+  if (!in_double(q)) return at_precision<DistanceIn<Core>::template At>(q);
+  const DistanceResult d = q.trace ? Core::run(q.a, q.b, q.options, *q.trace)
+                                   : Core::run(q.a, q.b, q.options, NoTrace{});
+  return from_distance(q.radii.any() ? swept_distance(d, q.radii) : d);
 }
 
-Outcome run_epa(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
+/// A GJK distance variant as a scene's narrow phase runs it (NarrowPhaseQuery).
+template <class Sub>
+DistanceResult narrow_phase_with(const Polytope& a, const Polytope& b,
+                                 std::span<const SimplexVertex> warm,
+                                 const GjkDistanceOptions& options) {
+  return warm.empty() ? gjk_distance_with<Sub>(a, b, options)
+                      : gjk_distance_warm_with<Sub>(a, b, warm, options);
+}
+
+/// A GJK distance query with the sub-algorithm Sub: started from the request's recorded simplex
+/// (vertex indices re-read on the shapes, see gjk_distance_warm_with) when it has one.
+template <class Sub>
+Outcome gjk_variant_query(const QueryRequest& q) {
+  if (q.warm.empty()) return distance_query<SubAlgorithmQuery<Sub>>(q);
+  const GjkDistanceOptions& o = q.options.gjk_distance;
+  const DistanceResult d = q.trace ? gjk_distance_warm_with<Sub>(q.a, q.b, q.warm, o, *q.trace)
+                                   : gjk_distance_warm_with<Sub>(q.a, q.b, q.warm, o);
+  return from_distance(q.radii.any() ? swept_distance(d, q.radii) : d);
+}
+
+/// EPA after gjk-johnson-backup; swept shapes: on the cores, shifted by the radii (depth grows
+/// by r_A + r_B; cores apart by less than that overlap by the difference).
+Outcome epa_query(const QueryRequest& q) {
+  if (!in_double(q)) return at_precision<EpaIn>(q);
   thread_local EpaPolytope workspace;  // buffers reused across queries on this thread
-  const EpaResult r = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
-  Outcome out = from_penetration(r, true);
-  out.iterations = r.gjk_iterations + r.iterations;  // GJK's, then EPA's
+  const EpaResult core = gjk_epa(q.a, q.b, q.options.gjk_distance, q.options.epa, workspace);
+  Outcome out = from_penetration(q.radii.any() ? swept_penetration(core, q.radii) : core, true);
+  out.iterations = core.gjk_iterations + core.iterations;  // GJK's, then EPA's
   return out;
 }
 
-Outcome run_sat(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  const auto sa = sat_shape(a);
-  const auto sb = sat_shape(b);
-  const peers::SatResult r = peers::sat_query(*sa, *sb, o.sat);
+Outcome sat_query(const QueryRequest& q) {
+  const auto sa = sat_shape(q.a);
+  const auto sb = sat_shape(q.b);
+  const peers::SatResult r = peers::sat_query(*sa, *sb, q.options.sat);
   return from_depth_answer(r, r.axes_tested);
 }
 
 #ifdef GJKLAB_HAVE_FCL
-Outcome run_fcl(const Polytope& a, const Polytope& b, const AlgorithmOptions& o,
-                peers::FclSolver solver) {
-  const auto fa = fcl_shape(a);
-  const auto fb = fcl_shape(b);
-  return from_penetration(peers::fcl_query(*fa, *fb, solver, o.fcl), false);
-}
-Outcome run_fcl_libccd(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return run_fcl(a, b, o, peers::FclSolver::libccd);
-}
-Outcome run_fcl_indep(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return run_fcl(a, b, o, peers::FclSolver::indep);
+template <peers::FclSolver Solver>
+Outcome fcl_query(const QueryRequest& q) {
+  const auto fa = fcl_shape(q.a);
+  const auto fb = fcl_shape(q.b);
+  return from_penetration(peers::fcl_query(*fa, *fb, Solver, q.options.fcl), false);
 }
 #endif
 
 #ifdef GJKLAB_HAVE_BULLET
 template <PenetrationResult (*Query)(const peers::BulletShape&, const peers::BulletShape&)>
-Outcome run_bullet(const Polytope& a, const Polytope& b, const AlgorithmOptions&) {
-  const auto ba = bullet_shape(a);
-  const auto bb = bullet_shape(b);
+Outcome bullet_query(const QueryRequest& q) {
+  const auto ba = bullet_shape(q.a);
+  const auto bb = bullet_shape(q.b);
   return from_penetration(Query(*ba, *bb), true);
 }
 #endif
 
-// ---- sphere-swept shapes (see gjk/swept.hpp) ---------------------------------------------
-
-using SweptPolytope = SphereSwept<Polytope>;
-
-Outcome swept_gjk_bool(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                       const AlgorithmOptions& o) {
-  return from_boolean(gjk_intersect(SweptPolytope(a, r.a), SweptPolytope(b, r.b), o.gjk_boolean));
-}
-
-Outcome swept_trace_gjk_bool(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                             const AlgorithmOptions& o, TraceRecorder& trace) {
-  return from_boolean(
-      gjk_intersect(SweptPolytope(a, r.a), SweptPolytope(b, r.b), o.gjk_boolean, trace));
-}
-
-/// EPA on the cores, shifted by the radii (depth grows by r_A + r_B; cores apart by less than
-/// that overlap by the difference).
-Outcome swept_epa(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                  const AlgorithmOptions& o) {
-  thread_local EpaPolytope workspace;
-  const EpaResult core = gjk_epa(a, b, o.gjk_distance, o.epa, workspace);
-  Outcome out = from_penetration(swept_penetration(core, r), true);
-  out.iterations = core.gjk_iterations + core.iterations;
-  return out;
-}
-
-/// The run of a libccd adapter (it takes the radii itself).
+/// A libccd adapter's query (it takes the radii itself; zero radii are the plain query).
 template <auto Query>
-Outcome run_libccd(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                   const AlgorithmOptions& o) {
-  const auto answer = Query(a, b, o.libccd, r);
+Outcome libccd_query(const QueryRequest& q) {
+  const auto answer = Query(q.a, q.b, q.options.libccd, q.radii);
   if constexpr (reports_depth(Query))
     return from_depth_answer(answer, answer.iterations);
   else
     return from_boolean(answer);
 }
 
-Outcome swept_exact(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                    const AlgorithmOptions& o) {
+Outcome exact_query(const QueryRequest& q) {
   Outcome out;
-  exact::OracleAnswer answer = solve_certified(a, b, r, o.oracle).answer;
+  exact::OracleAnswer answer = solve_certified(q.a, q.b, q.radii, q.options.oracle).answer;
   out.intersect = answer.intersect;
   out.distance = answer.distance;
   out.depth = answer.depth;
@@ -183,9 +169,8 @@ Vec3 certified_normal(const CertifiedAnswer& c) {
 
 /// `gjk-certified`: gjk-johnson (and EPA for intersecting pairs), certified exactly, with the
 /// QP as the fallback. Iterations and support calls are the double queries'.
-Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                            const AlgorithmOptions& o) {
-  CertifiedAnswer c = solve_certified(a, b, r, certified_query_options(o));
+Outcome gjk_certified_query(const QueryRequest& q) {
+  CertifiedAnswer c = solve_certified(q.a, q.b, q.radii, certified_query_options(q.options));
   Outcome out;
   out.intersect = c.answer.intersect;
   out.distance = c.answer.distance;
@@ -193,7 +178,7 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
     out.depth = *c.answer.depth;
     out.normal = certified_normal(c);
   }
-  if (!r.any()) {
+  if (!q.radii.any()) {
     out.witness_a = c.answer.witness_a;
     out.witness_b = c.answer.witness_b;
   }
@@ -203,57 +188,34 @@ Outcome swept_gjk_certified(const Polytope& a, const Polytope& b, const SweptRad
   return out;
 }
 
-using SweptRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
-                             const AlgorithmOptions&);
-
-/// The polytope query of an algorithm that takes the radii itself (the libccd adapters and the
-/// oracle): its swept query with zero radii, which is exactly the plain one.
-template <SweptRun Run>
-Outcome at_zero_radii(const Polytope& a, const Polytope& b, const AlgorithmOptions& o) {
-  return Run(a, b, SweptRadii{}, o);
-}
-
 // ---- the registry entries ------------------------------------------------------------------
 //
 // One function per algorithm (or per group of algorithms made the same way) builds its entry
-// from its query: the plain, traced, sphere-swept, other-precision, warm-started and benchmark
-// forms where it has them, and its option schema. registry() lists them, one line each.
+// from its query, what the query can be asked (QueryAbilities), its option schema and its
+// benchmark loop. registry() lists them, one line each.
 
-/// A GJK distance variant: every form from one core query (a type whose run() takes shapes of
-/// any precision, traced or not; see SubAlgorithmQuery).
+/// A GJK distance variant: every form from one core query (see SubAlgorithmQuery).
 template <class Core>
 AlgorithmInfo gjk_distance_entry(std::string_view name, std::string_view description,
                                  OptionSchema options) {
   return {.name = name,
           .kind = AnswerKind::distance,
           .description = description,
-          .run = run_distance<Core>,
-          .run_traced = trace_distance<Core>,
-          .run_swept = run_swept_distance<Core>,
-          .run_swept_traced = trace_swept_distance<Core>,
-          .run_at_precision = at_precision<DistanceIn<Core>::template At>,
+          .run = distance_query<Core>,
+          .can = {.swept = true, .traced = true, .precision = true},
           .options = options,
           .bench = bench_distance<Core>};
 }
 
-/// The query of gjk_variant_entry started from a recorded simplex (vertex indices re-read on
-/// the shapes, see gjk_distance_warm_with); swept shapes: on the cores, shifted by the radii.
-template <class Sub>
-Outcome warm_distance_with(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                           std::span<const SimplexVertex> warm, const AlgorithmOptions& o,
-                           TraceRecorder* trace) {
-  const DistanceResult d = trace ? gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance, *trace)
-                                 : gjk_distance_warm_with<Sub>(a, b, warm, o.gjk_distance);
-  return from_distance(r.any() ? swept_distance(d, r) : d);
-}
-
 /// A GJK distance query with the sub-algorithm Sub, taking the options gjk_distance (and
-/// warm_start).
+/// warm_start): it can also start from a recorded simplex, and be a scene's narrow phase.
 template <class Sub>
 AlgorithmInfo gjk_variant_entry(std::string_view name, std::string_view description) {
   AlgorithmInfo entry =
       gjk_distance_entry<SubAlgorithmQuery<Sub>>(name, description, gjk_variant_option_schema());
-  entry.run_warm = warm_distance_with<Sub>;
+  entry.run = gjk_variant_query<Sub>;
+  entry.can.warm = true;
+  entry.narrow_phase = narrow_phase_with<Sub>;
   return entry;
 }
 
@@ -261,11 +223,8 @@ AlgorithmInfo gjk_bool_entry() {
   return {.name = "gjk-bool",
           .kind = AnswerKind::boolean,
           .description = "boolean GJK walking a simplex with triple-product directions",
-          .run = run_gjk_bool,
-          .run_traced = trace_gjk_bool,
-          .run_swept = swept_gjk_bool,
-          .run_swept_traced = swept_trace_gjk_bool,
-          .run_at_precision = at_precision<GjkBoolIn>,
+          .run = gjk_bool_query,
+          .can = {.swept = true, .traced = true, .precision = true},
           .options = gjk_boolean_option_schema(),
           .bench = bench_gjk_bool};
 }
@@ -275,10 +234,9 @@ AlgorithmInfo epa_entry() {
           .kind = AnswerKind::distance,
           .description =
               "gjk-johnson-backup, then the expanding polytope algorithm for the penetration depth",
-          .run = run_epa,
+          .run = epa_query,
+          .can = {.swept = true, .precision = true},
           .depth = true,
-          .run_swept = swept_epa,
-          .run_at_precision = at_precision<EpaIn>,
           .options = epa_option_schema(),
           .bench = bench_epa};
 }
@@ -289,25 +247,24 @@ AlgorithmInfo sat_entry() {
           .description =
               "separating axis test on exact hull features (face normals, edge cross "
               "products) with the minimum-overlap depth",
-          .run = run_sat,
+          .run = sat_query,
           .depth = true,
           .options = sat_option_schema(),
           .bench = bench_sat};
 }
 
-/// A libccd query, all from its adapter: the adapter takes the radii itself, so the plain run
-/// is the swept one at zero radii; a penetration adapter reports a depth and takes the depth
-/// options.
+/// A libccd query, all from its adapter (which takes the radii itself); a penetration adapter
+/// reports a depth and takes the depth options.
 template <auto Query>
 AlgorithmInfo libccd_entry(std::string_view name, std::string_view description) {
   constexpr bool depth = reports_depth(Query);
   return {.name = name,
           .kind = AnswerKind::boolean,
           .description = description,
-          .run = at_zero_radii<run_libccd<Query>>,
+          .run = libccd_query<Query>,
+          .can = {.swept = true},
           .peer = true,
           .depth = depth,
-          .run_swept = run_libccd<Query>,
           .options = depth ? libccd_depth_option_schema() : libccd_option_schema(),
           .bench = bench_libccd<Query>};
 }
@@ -319,7 +276,7 @@ AlgorithmInfo fcl_entry(std::string_view name, std::string_view description) {
   return {.name = name,
           .kind = AnswerKind::distance,
           .description = description,
-          .run = Solver == peers::FclSolver::libccd ? run_fcl_libccd : run_fcl_indep,
+          .run = fcl_query<Solver>,
           .peer = true,
           .depth = true,
           .options = fcl_option_schema(),
@@ -334,7 +291,7 @@ AlgorithmInfo bullet_entry(std::string_view name, std::string_view description) 
   return {.name = name,
           .kind = AnswerKind::distance,
           .description = description,
-          .run = run_bullet<Query>,
+          .run = bullet_query<Query>,
           .peer = true,
           .depth = true,
           .bench = bench_bullet<Query>};
@@ -347,8 +304,8 @@ AlgorithmInfo gjk_certified_entry() {
           .description =
               "gjk-johnson and EPA, verified by exact certificates (CGAL's QP as "
               "fallback): exact answers",
-          .run = at_zero_radii<swept_gjk_certified>,
-          .run_swept = swept_gjk_certified,
+          .run = gjk_certified_query,
+          .can = {.swept = true},
           .bench = bench_gjk_certified};
 }
 
@@ -359,9 +316,9 @@ AlgorithmInfo exact_entry() {
           .description =
               "exact answer in rational arithmetic: certified from gjklab's own "
               "GJK/EPA, CGAL's QP where no certificate holds",
-          .run = at_zero_radii<swept_exact>,
+          .run = exact_query,
+          .can = {.swept = true},
           .depth = true,
-          .run_swept = swept_exact,
           .options = exact_option_schema()};
 }
 
@@ -454,87 +411,75 @@ AddedAlgorithm::~AddedAlgorithm() {
 }
 
 bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii) {
-  return !radii.any() || algorithm.run_swept != nullptr;
+  return !radii.any() || algorithm.can.swept;
 }
 
 bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii) {
-  return radii.any() ? algorithm.run_swept_traced != nullptr : algorithm.run_traced != nullptr;
+  return algorithm.can.traced && handles(algorithm, radii);
 }
-
-namespace {
-
-std::invalid_argument polytopes_only(const AlgorithmInfo& algorithm) {
-  return std::invalid_argument("algorithm '" + std::string(algorithm.name) +
-                               "' answers for polytopes only, not for sphere-swept shapes "
-                               "(radius > 0)");
-}
-
-}  // namespace
 
 AlgorithmGroup group_of(const AlgorithmInfo& algorithm) {
   if (algorithm.peer) return AlgorithmGroup::peer;
   if (algorithm.kind == AnswerKind::exact) return AlgorithmGroup::oracle;
-  return algorithm.run_traced ? AlgorithmGroup::gjk : AlgorithmGroup::own;
+  return algorithm.can.traced ? AlgorithmGroup::gjk : AlgorithmGroup::own;
 }
 
 bool takes_precision(const AlgorithmInfo& algorithm) {
-  return algorithm.run_at_precision != nullptr;
+  return algorithm.can.precision;
 }
 
 namespace {
 
-/// Whether the options ask for another precision than double; throws std::invalid_argument
-/// naming the algorithm when it cannot run in it.
-bool in_other_precision(const AlgorithmInfo& algorithm, const AlgorithmOptions& options) {
-  if (options.precision == ScalarPrecision::double_float) return false;
-  if (!takes_precision(algorithm))
-    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
-                                "' runs in double only, not in " +
-                                std::string(to_string(options.precision)));
-  return true;
+std::invalid_argument cannot(const AlgorithmInfo& algorithm, const std::string& what) {
+  return std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' " + what);
 }
-
-}  // namespace
-
-namespace {
 
 /// Whether the query starts from the case's recorded simplex; throws std::invalid_argument
 /// naming the algorithm when warm_start asks for what it cannot do.
-bool warm_started(const AlgorithmInfo& algorithm, const AlgorithmOptions& options,
-                  std::span<const SimplexVertex> warm) {
-  if (!options.warm_start || warm.empty()) return false;
-  if (!algorithm.run_warm || options.precision != ScalarPrecision::double_float)
-    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) +
-                                "' cannot be warm-started here (in double only)");
+bool warm_started(const AlgorithmInfo& algorithm, const QueryRequest& q) {
+  if (!q.options.warm_start || q.warm.empty()) return false;
+  if (!algorithm.can.warm || q.options.precision != ScalarPrecision::double_float)
+    throw cannot(algorithm, "cannot be warm-started here (in double only)");
   return true;
 }
 
+/// Whether the query starts from the request's simplex, once the request is checked: throws
+/// std::invalid_argument naming the algorithm when it asks for what the entry cannot do (see
+/// run_query for the order).
+bool checked_warm_start(const AlgorithmInfo& algorithm, const QueryRequest& q) {
+  if (q.trace && !can_trace(algorithm, q.radii))
+    throw cannot(algorithm, std::string("cannot be traced") +
+                                (q.radii.any() ? " on sphere-swept shapes" : ""));
+  if (warm_started(algorithm, q)) return true;
+  if (q.options.precision != ScalarPrecision::double_float && !algorithm.can.precision)
+    throw cannot(algorithm,
+                 "runs in double only, not in " + std::string(to_string(q.options.precision)));
+  if (!handles(algorithm, q.radii))
+    throw cannot(algorithm, "answers for polytopes only, not for sphere-swept shapes (radius > 0)");
+  return false;
+}
+
 }  // namespace
+
+Outcome run_query(const AlgorithmInfo& algorithm, const QueryRequest& request) {
+  if (checked_warm_start(algorithm, request)) return algorithm.run(request);
+  QueryRequest cold = request;  // a simplex the options do not ask to start from is not used
+  cold.warm = {};
+  return algorithm.run(cold);
+}
 
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                       const SweptRadii& radii, const AlgorithmOptions& options,
                       std::span<const SimplexVertex> warm) {
-  if (warm_started(algorithm, options, warm))
-    return algorithm.run_warm(a, b, radii, warm, options, nullptr);
-  if (in_other_precision(algorithm, options))
-    return algorithm.run_at_precision(a, b, radii, options, nullptr);
-  if (!radii.any()) return algorithm.run(a, b, options);
-  if (!algorithm.run_swept) throw polytopes_only(algorithm);
-  return algorithm.run_swept(a, b, radii, options);
+  return run_query(algorithm, {.a = a, .b = b, .radii = radii, .options = options, .warm = warm});
 }
 
 Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                              const SweptRadii& radii, const AlgorithmOptions& options,
                              TraceRecorder& trace, std::span<const SimplexVertex> warm) {
-  if (!can_trace(algorithm, radii))
-    throw std::invalid_argument("algorithm '" + std::string(algorithm.name) + "' cannot be traced" +
-                                (radii.any() ? " on sphere-swept shapes" : ""));
-  if (warm_started(algorithm, options, warm))
-    return algorithm.run_warm(a, b, radii, warm, options, &trace);
-  if (in_other_precision(algorithm, options))
-    return algorithm.run_at_precision(a, b, radii, options, &trace);
-  if (!radii.any()) return algorithm.run_traced(a, b, options, trace);
-  return algorithm.run_swept_traced(a, b, radii, options, trace);
+  return run_query(
+      algorithm,
+      {.a = a, .b = b, .radii = radii, .options = options, .warm = warm, .trace = &trace});
 }
 
 std::string algorithm_names() {
@@ -563,7 +508,7 @@ BenchTally run_bench_loop_via_registry(const AlgorithmInfo& algorithm,
   BenchTally t;
   for (int r = 0; r < repetitions; ++r) {
     for (const BenchPair& p : pairs) {
-      const Outcome o = algorithm.run(*p.a, *p.b, options);
+      const Outcome o = algorithm.run({.a = *p.a, .b = *p.b, .options = options});
       count_query(t, o.iterations, o.support_calls, o.intersect, o.distance.value_or(0.0));
     }
   }

@@ -65,10 +65,10 @@ Json algorithm_entry(const AlgorithmInfo& info) {
   j["answers"] = {
       {"boolean", true}, {"distance", info.kind != AnswerKind::boolean}, {"depth", info.depth}};
   j["description"] = info.description;
-  j["swept"] = info.run_swept != nullptr;
-  j["traceable"] = info.run_traced != nullptr;
+  j["swept"] = info.can.swept;
+  j["traceable"] = info.can.traced;
   j["precisions"] = takes_precision(info);
-  j["warm_start"] = info.run_warm != nullptr;
+  j["warm_start"] = info.can.warm;
   j["options"] = Json::array();
   for (const OptionRow& row : info.options)
     j["options"].push_back(option_entry(row));

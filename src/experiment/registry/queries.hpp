@@ -28,7 +28,6 @@
 
 namespace gjklab::experiment::registry_parts {
 
-
 /// A penetration answer: distance and closest points for separated pairs, depth and normal
 /// (and the deepest points, when the algorithm reports them) for intersecting ones.
 inline Outcome from_penetration(const PenetrationResult& r, bool deepest_points) {
@@ -49,7 +48,6 @@ inline Outcome from_penetration(const PenetrationResult& r, bool deepest_points)
   return o;
 }
 
-
 /// A peer's depth answer (libccd's penetration queries, SAT): the boolean, and the depth and
 /// normal where it says intersecting; no distance. `iterations` as the peer counts them.
 template <class DepthResult>
@@ -65,7 +63,6 @@ Outcome from_depth_answer(const DepthResult& r, int iterations) {
   o.termination = r.termination;
   return o;
 }
-
 
 // Shapes prepared for an algorithm (exact hull features, a library's own shape object) are
 // built once per polytope and thread and reused, keyed by Polytope::id(): a query on the same
@@ -111,7 +108,6 @@ inline std::shared_ptr<const peers::BulletShape> bullet_shape(const Polytope& sh
       shape, [](const Polytope& p) { return std::make_shared<const peers::BulletShape>(p); });
 }
 #endif
-
 
 /// The oracle options of `gjk-certified`: a depth where one is asked (o.oracle.depth, as for
 /// `exact`), certificates on, no hull counts.
@@ -221,22 +217,19 @@ Outcome epa_in(const Polytope& a, const Polytope& b, const SweptRadii& r, const 
   return out;
 }
 
-using PrecisionRun = Outcome (*)(const Polytope&, const Polytope&, const SweptRadii&,
-                                 const AlgorithmOptions&, TraceRecorder*);
-
-/// The entry's run_at_precision: Run<float> or Run<long double> by options.precision.
+/// A request in float or long double: Run<float> or Run<long double> by options.precision,
+/// on the clouds rounded to it.
 template <template <class> class Run>
-Outcome at_precision(const Polytope& a, const Polytope& b, const SweptRadii& r,
-                     const AlgorithmOptions& o, TraceRecorder* trace) {
-  switch (o.precision) {
+Outcome at_precision(const QueryRequest& q) {
+  switch (q.options.precision) {
     case ScalarPrecision::single_float:
-      return Run<float>::run(a, b, r, o, trace);
+      return Run<float>::run(q.a, q.b, q.radii, q.options, q.trace);
     case ScalarPrecision::long_double:
-      return Run<long double>::run(a, b, r, o, trace);
+      return Run<long double>::run(q.a, q.b, q.radii, q.options, q.trace);
     case ScalarPrecision::double_float:
       break;
   }
-  throw std::logic_error("run_at_precision called for double");
+  throw std::logic_error("at_precision called for double");
 }
 template <class Query>
 struct DistanceIn {

@@ -4,11 +4,14 @@
 // algorithm is one entry in src/experiment/registry/algorithms.cpp.
 #pragma once
 
+#include <any>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <typeindex>
+#include <utility>
 #include <vector>
 
 #include "gjklab/exact/oracle.hpp"
@@ -21,15 +24,38 @@
 #include "gjklab/gjk/simplex.hpp"
 #include "gjklab/gjk/swept.hpp"
 #include "gjklab/gjk/trace.hpp"
+#include "gjklab/peers/fcl_options.hpp"
 #include "gjklab/peers/libccd.hpp"
 #include "gjklab/peers/sat.hpp"
-#ifdef GJKLAB_HAVE_FCL
-#include "gjklab/peers/fcl.hpp"
-#endif
 
 namespace gjklab::experiment {
 
-/// Options of every algorithm, one struct each; an experiment records all of them.
+/// The option structs of algorithms added from outside the library (AddedAlgorithm), one per
+/// type: an added algorithm's schema rows reach its own struct as `o.added.get<MyOptions>()`,
+/// which holds the struct's defaults until a key sets it. Copies are deep (T must be
+/// copyable), so every AlgorithmSpec owns its options as it owns the library's.
+class AddedOptions {
+ public:
+  template <class T>
+  T& get() {
+    for (auto& [type, value] : structs_)
+      if (type == typeid(T)) return std::any_cast<T&>(value);
+    return std::any_cast<T&>(structs_.emplace_back(typeid(T), T{}).second);
+  }
+  /// The struct as set, or its defaults when nothing set it.
+  template <class T>
+  T value() const {
+    for (const auto& [type, stored] : structs_)
+      if (type == typeid(T)) return std::any_cast<const T&>(stored);
+    return T{};
+  }
+
+ private:
+  std::vector<std::pair<std::type_index, std::any>> structs_;
+};
+
+/// Options of every algorithm, one struct each; an experiment records all of them. Each
+/// struct's keys are its algorithms' option schemas (option_schema.hpp).
 struct AlgorithmOptions {
   GjkBooleanOptions gjk_boolean;
   GjkDistanceOptions gjk_distance;  ///< gjk-johnson, gjk-johnson-backup, gjk-sv, gjk-voronoi
@@ -37,15 +63,14 @@ struct AlgorithmOptions {
   peers::LibccdOptions libccd;
   EpaOptions epa;  ///< `epa` (its GJK phase uses gjk_distance)
   peers::SatOptions sat;
-#ifdef GJKLAB_HAVE_FCL
-  peers::FclOptions fcl;
-#endif
+  peers::FclOptions fcl;  ///< fcl-libccd, fcl-indep (registered when FCL was built)
   exact::OracleOptions oracle;
+  AddedOptions added;  ///< the added algorithms' own structs
   /// The floating-point type of the GJK queries (gjk-bool, the distance variants, epa): their
   /// inputs are rounded to it and they compute in it; answers are reported in double.
   ScalarPrecision precision = ScalarPrecision::double_float;
   /// The GJK distance variants: start from the case's recorded simplex (the scene's previous
-  /// frame, `stream` family) instead of cold; cases without one run cold (see run_algorithm).
+  /// frame, `stream` family) instead of cold; cases without one run cold (see run_query).
   bool warm_start = false;
 
   /// Sets the iteration bound of every iterative algorithm at once (libccd's penetration
@@ -119,47 +144,66 @@ constexpr std::string_view to_string(AnswerKind k) {
   return name_of(kAnswerKindNames, k);
 }
 
+/// One query as an experiment, the benchmark, a scene or replay asks for it: the two polytopes,
+/// the radii that sweep them (zero: the polytopes themselves), the options (their precision
+/// among them), the recorded simplex to start from (empty: cold) and the trace to fill (null:
+/// none). run_query checks a request against the entry's abilities before its run sees it, so a
+/// run is only asked for what its entry says it can do.
+struct QueryRequest {
+  const Polytope& a;
+  const Polytope& b;
+  SweptRadii radii = {};
+  const AlgorithmOptions& options;
+  std::span<const SimplexVertex> warm = {};
+  TraceRecorder* trace = nullptr;
+};
+
+/// What an entry's run can be asked beyond a double query on two polytopes, cold and untraced.
+struct QueryAbilities {
+  /// Sphere-swept shapes (radii > 0): GJK distance queries run on the cores and shift the
+  /// answer by the radii (see gjk/swept.hpp); the boolean GJK and libccd walk the swept support
+  /// map; the oracle answers with exact::solve_swept. Not SAT's axes, nor the FCL and Bullet
+  /// adapters, which build plain convex hulls.
+  bool swept = false;
+  /// A per-iteration trace (same arithmetic), on swept shapes too when `swept` (of the cores'
+  /// query for distance algorithms). Only gjklab's GJK queries record one.
+  bool traced = false;
+  /// float and long double (options.precision): the query on the clouds rounded to that
+  /// precision, with the radii rounded too; answers are reported in double.
+  bool precision = false;
+  /// A start from a simplex given by vertex indices into a's and b's vertex lists
+  /// (gjk_distance_warm_with; on the cores of swept shapes), in double only.
+  bool warm = false;
+};
+
+/// A GJK distance variant's own answer, with the final simplex that a scene keeps to
+/// warm-start the pair's query in the next frame: from `warm` (vertex indices into a's and b's
+/// lists), or cold when it is empty; in double, on polytopes.
+using NarrowPhaseQuery = DistanceResult (*)(const Polytope& a, const Polytope& b,
+                                            std::span<const SimplexVertex> warm,
+                                            const GjkDistanceOptions& options);
+
 struct AlgorithmInfo {
   std::string_view name;
   AnswerKind kind;
   std::string_view description;
-  Outcome (*run)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options);
-  /// The same query with a per-iteration trace (same arithmetic); nullptr when the algorithm
-  /// cannot be traced (peers, the oracle).
-  Outcome (*run_traced)(const Polytope& a, const Polytope& b, const AlgorithmOptions& options,
-                        TraceRecorder& trace) = nullptr;
+  /// The query: every request the abilities allow (run_query checks the others away).
+  Outcome (*run)(const QueryRequest& query);
+  QueryAbilities can = {};
   /// A third-party library behind an adapter (libccd, FCL, Bullet): its disagreements with
   /// the exact oracle are counted and reported, not treated as gjklab bugs.
   bool peer = false;
   /// Reports a penetration depth for intersecting pairs (Outcome::depth).
   bool depth = false;
-  /// The query on sphere-swept shapes (each polytope swept by a ball of its radius); nullptr
-  /// when the algorithm handles polytopes only (SAT's axes, and the FCL and Bullet adapters,
-  /// which build plain convex hulls). GJK distance queries run on the cores and shift the
-  /// answer by the radii (see gjk/swept.hpp); the boolean GJK and libccd walk the swept
-  /// support map; the oracle answers with exact::solve_swept.
-  Outcome (*run_swept)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
-                       const AlgorithmOptions& options) = nullptr;
-  /// The same with a per-iteration trace (of the cores' query for distance algorithms).
-  Outcome (*run_swept_traced)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
-                              const AlgorithmOptions& options, TraceRecorder& trace) = nullptr;
-  /// The query in float or long double (options.precision; nullptr for algorithms that run in
-  /// double only): on the clouds rounded to that precision, with the radii (zero for plain
-  /// polytopes) and a trace when `trace` is not null. run_algorithm dispatches to it.
-  Outcome (*run_at_precision)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
-                              const AlgorithmOptions& options, TraceRecorder* trace) = nullptr;
-  /// The query started from a simplex given by vertex indices into a's and b's vertex lists
-  /// (gjk_distance_warm_with; on the cores of swept shapes), with a trace when `trace` is not
-  /// null; nullptr when the algorithm cannot be warm-started. In double only.
-  Outcome (*run_warm)(const Polytope& a, const Polytope& b, const SweptRadii& radii,
-                      std::span<const SimplexVertex> warm, const AlgorithmOptions& options,
-                      TraceRecorder* trace) = nullptr;
   /// The keys the algorithm takes, as data (option_schema.hpp): parsing, validation, the
   /// archive's description and replay all follow from it.
   OptionSchema options = {};
   /// The benchmark's direct loop of the query (see BenchLoop); nullptr when it has none (the
   /// oracle: minutes per query on large clouds), and the benchmark then loops over run.
   BenchLoop bench = nullptr;
+  /// The query as a scene's narrow phase runs it (see NarrowPhaseQuery): set exactly for the
+  /// warm-startable GJK distance variants (can.warm).
+  NarrowPhaseQuery narrow_phase = nullptr;
 };
 
 /// Where an algorithm comes from, so that tools can group its results (a study of gjklab's GJK
@@ -195,16 +239,19 @@ bool handles(const AlgorithmInfo& algorithm, const SweptRadii& radii);
 /// Whether the algorithm can trace a pair with these radii.
 bool can_trace(const AlgorithmInfo& algorithm, const SweptRadii& radii);
 
-/// Runs the algorithm on the polytopes (zero radii) or on the shapes they make swept by the
-/// radii. Throws std::invalid_argument naming the algorithm when !handles(algorithm, radii).
-/// With options.warm_start and a non-empty `warm` (the case's recorded simplex), the query
-/// starts from it (AlgorithmInfo::run_warm); it throws std::invalid_argument when the
-/// algorithm cannot, or in another precision than double.
+/// Runs the request's query with the algorithm. Throws std::invalid_argument naming the
+/// algorithm when the request asks for what the entry cannot do (in this order): a trace
+/// (!can_trace), a warm start (with options.warm_start and a non-empty `warm`: !can.warm, or
+/// another precision than double), another precision (!can.precision), sphere-swept shapes
+/// (!can.swept). A `warm` without options.warm_start is ignored: the query runs cold.
+Outcome run_query(const AlgorithmInfo& algorithm, const QueryRequest& request);
+
+/// run_query on the polytopes (zero radii) or on the shapes they make swept by the radii,
+/// untraced; with options.warm_start, from the case's recorded simplex `warm`.
 Outcome run_algorithm(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                       const SweptRadii& radii, const AlgorithmOptions& options,
                       std::span<const SimplexVertex> warm = {});
-/// The same with a per-iteration trace. Throws std::invalid_argument naming the algorithm when
-/// !can_trace(algorithm, radii).
+/// The same with a per-iteration trace.
 Outcome run_algorithm_traced(const AlgorithmInfo& algorithm, const Polytope& a, const Polytope& b,
                              const SweptRadii& radii, const AlgorithmOptions& options,
                              TraceRecorder& trace, std::span<const SimplexVertex> warm = {});

@@ -70,9 +70,7 @@ OptionSchema epa_option_schema();
 OptionSchema libccd_option_schema();
 OptionSchema libccd_depth_option_schema();
 OptionSchema sat_option_schema();
-#ifdef GJKLAB_HAVE_FCL
 OptionSchema fcl_option_schema();
-#endif
 OptionSchema exact_option_schema();
 
 }  // namespace gjklab::experiment
