@@ -111,10 +111,10 @@ std::vector<Vec3> cloud_of(const SceneTable& t, const std::string& shape) {
 /// A generated cloud of the family shape: the experiments' unit cloud (within [-1, 1] of its
 /// centre), halved so that `size` is its extent as for the demo shapes, and scaled by size.
 std::vector<Vec3> family_cloud_points(const SceneTable& t, const experiment::ShapeGenerator& f,
-                                      void* gsl_rng) {
+                                      experiment::RandomStream& stream) {
   const int n = static_cast<int>(t.integer("vertices", 32, 1, 100000));
   const double aspect = t.number("aspect", 10, 1, 1e12);
-  std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, gsl_rng, aspect);
+  std::vector<Vec3> cloud = experiment::generate_shape(f.kind, n, stream, aspect);
   const Vec3 s = 0.5 * size_of(t);
   for (Vec3& v : cloud)
     v = v.cwiseProduct(s);
@@ -519,7 +519,7 @@ void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::
     const experiment::ShapeGenerator* generated = experiment::find_body_cloud(shape);
     // The group's own stream (the scene seed and the group's index alone), so adding a group
     // leaves the others' clouds and the placement stream as they were.
-    const experiment::GslStream rng_of_group =
+    const experiment::OwnedRandomStream rng_of_group =
         generated ? experiment::case_stream(s.seed, group) : nullptr;
     const std::vector<std::vector<Vec3>> meshes = shape == "mesh" ? read_meshes(t)
                                                   : shape == "real_object"
@@ -528,8 +528,7 @@ void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::
     ++group;
     auto shape_of_body = [&](std::int64_t i) {
       if (generated)
-        return shapes.get(t, "shape", family_cloud_points(t, *generated, rng_of_group.get()),
-                          radius);
+        return shapes.get(t, "shape", family_cloud_points(t, *generated, *rng_of_group), radius);
       if (!meshes.empty())
         return shapes.get(t, shape == "mesh" ? "path" : "objects",
                           meshes[static_cast<std::size_t>(i) % meshes.size()], radius);

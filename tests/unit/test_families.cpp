@@ -2,35 +2,22 @@
 // kind, the placements, the family weights and the scale.
 #include <catch2/catch.hpp>
 
-#include <gsl/gsl_rng.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "gjklab/experiment/config/config.hpp"
+#include "../../src/experiment/cases/random_stream.hpp"
 #include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;
 
 namespace {
-
-struct RngDeleter {
-  void operator()(gsl_rng* r) const { gsl_rng_free(r); }
-};
-using RngPtr = std::unique_ptr<gsl_rng, RngDeleter>;
-
-RngPtr make_rng(unsigned long seed) {
-  RngPtr r(gsl_rng_alloc(gsl_rng_mt19937));
-  gsl_rng_set(r.get(), seed);
-  return r;
-}
 
 FamilySpec family(ShapeKind shape, double vertices_lo, double vertices_hi) {
   FamilySpec f;
@@ -147,11 +134,11 @@ TEST_CASE("case stream seeds are distinct within an experiment", "[unit][familie
 }
 
 TEST_CASE("point generators have the stated distributions", "[unit][families]") {
-  const RngPtr rng = make_rng(99);
+  RandomStream rng(99);
   const int n = 20000;
 
   SECTION("sphere_points lie on the unit sphere, centred") {
-    const auto pts = generate_shape(ShapeKind::sphere_points, n, rng.get());
+    const auto pts = generate_shape(ShapeKind::sphere_points, n, rng);
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double worst = 0;
     for (const Vec3& p : pts)
@@ -164,7 +151,7 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     CHECK(static_cast<double>(upper) / n == Approx(0.25).margin(0.015));
   }
   SECTION("ball_points fill the unit ball uniformly") {
-    const auto pts = generate_shape(ShapeKind::ball_points, n, rng.get());
+    const auto pts = generate_shape(ShapeKind::ball_points, n, rng);
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double largest = 0;
     for (const Vec3& p : pts)
@@ -177,7 +164,7 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     CHECK(static_cast<double>(inner) / n == Approx(0.125).margin(0.01));
   }
   SECTION("cube_points fill [-1, 1]^3") {
-    const auto pts = generate_shape(ShapeKind::cube_points, n, rng.get());
+    const auto pts = generate_shape(ShapeKind::cube_points, n, rng);
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     double largest = 0;
     for (const Vec3& p : pts)
@@ -191,7 +178,7 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     CHECK(static_cast<double>(right) / n == Approx(0.25).margin(0.015));
   }
   SECTION("gaussian clouds are standard normal") {
-    const auto pts = generate_shape(ShapeKind::gaussian, n, rng.get());
+    const auto pts = generate_shape(ShapeKind::gaussian, n, rng);
     REQUIRE(pts.size() == static_cast<std::size_t>(n));
     const Vec3 mean = mean_of(pts);
     CHECK(mean.norm() < 0.04);
@@ -206,24 +193,24 @@ TEST_CASE("point generators have the stated distributions", "[unit][families]") 
     CHECK(beyond > n / 2);  // P(|p| > 1) ≈ 0.80 for a 3-D standard normal
   }
   SECTION("vertex counts below 1 are refused") {
-    CHECK_THROWS_AS(generate_shape(ShapeKind::sphere_points, 0, rng.get()), std::invalid_argument);
+    CHECK_THROWS_AS(generate_shape(ShapeKind::sphere_points, 0, rng), std::invalid_argument);
   }
 }
 
 TEST_CASE("demo shapes have their vertex counts, clamped to their minimums", "[unit][families]") {
-  const RngPtr rng = make_rng(1);
-  CHECK(generate_shape(ShapeKind::box, 1, rng.get()).size() == 8);
-  CHECK(generate_shape(ShapeKind::box, 500, rng.get()).size() == 8);
-  CHECK(generate_shape(ShapeKind::cone, 33, rng.get()).size() == 33);
-  CHECK(generate_shape(ShapeKind::cone, 2, rng.get()).size() == 4);
-  CHECK(generate_shape(ShapeKind::cylinder, 64, rng.get()).size() == 64);
-  CHECK(generate_shape(ShapeKind::cylinder, 63, rng.get()).size() == 64);
-  CHECK(generate_shape(ShapeKind::cylinder, 3, rng.get()).size() == 6);
-  CHECK(generate_shape(ShapeKind::uv_sphere, 482, rng.get()).size() == 482);
-  CHECK(generate_shape(ShapeKind::uv_sphere, 500, rng.get()).size() == 482);
-  CHECK(generate_shape(ShapeKind::uv_sphere, 1, rng.get()).size() == 6);
+  RandomStream rng(1);
+  CHECK(generate_shape(ShapeKind::box, 1, rng).size() == 8);
+  CHECK(generate_shape(ShapeKind::box, 500, rng).size() == 8);
+  CHECK(generate_shape(ShapeKind::cone, 33, rng).size() == 33);
+  CHECK(generate_shape(ShapeKind::cone, 2, rng).size() == 4);
+  CHECK(generate_shape(ShapeKind::cylinder, 64, rng).size() == 64);
+  CHECK(generate_shape(ShapeKind::cylinder, 63, rng).size() == 64);
+  CHECK(generate_shape(ShapeKind::cylinder, 3, rng).size() == 6);
+  CHECK(generate_shape(ShapeKind::uv_sphere, 482, rng).size() == 482);
+  CHECK(generate_shape(ShapeKind::uv_sphere, 500, rng).size() == 482);
+  CHECK(generate_shape(ShapeKind::uv_sphere, 1, rng).size() == 6);
   // They fit [-0.5, 0.5]^3 (see geometry/shapes.hpp).
-  for (const Vec3& p : generate_shape(ShapeKind::uv_sphere, 100, rng.get()))
+  for (const Vec3& p : generate_shape(ShapeKind::uv_sphere, 100, rng))
     CHECK(p.cwiseAbs().maxCoeff() <= 0.5 + 1e-15);
 
   // The record holds the actual cloud sizes.
@@ -410,8 +397,8 @@ TEST_CASE("family registry: every generated shape is one row, and the parser fol
     INFO(to_string(g.kind));
     CHECK(kinds.insert(g.kind).second);  // one row per kind
     CHECK(find_shape_generator(g.kind) == &g);
-    const auto rng = make_rng(7);
-    CHECK_FALSE(generate_shape(g.kind, g.default_vertices, rng.get()).empty());
+    RandomStream rng(7);
+    CHECK_FALSE(generate_shape(g.kind, g.default_vertices, rng).empty());
     // A family may name exactly the nameable rows, and gets the row's default vertex count.
     const auto listed =
         std::find_if(family_shapes().begin(), family_shapes().end(),

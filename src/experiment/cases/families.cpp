@@ -11,6 +11,7 @@
 #include <string>
 
 #include "experiment/cases/contacts.hpp"
+#include "experiment/cases/random_stream.hpp"
 #include "experiment/cases/sampling.hpp"
 #include "gjklab/experiment/cases/seeded_random.hpp"
 #include "gjklab/geometry/polytope.hpp"
@@ -118,12 +119,13 @@ Mat3 draw_rotation(gsl_rng* r, Rotation mode) {
 
 /// Generates one shape and moves it to the origin (vertex mean), rotates it there as the
 /// family says, and scales it by `scale`.
-std::vector<Vec3> make_shape(gsl_rng* r, ShapeKind kind, int n, const FamilySpec& family,
+std::vector<Vec3> make_shape(RandomStream& stream, ShapeKind kind, int n, const FamilySpec& family,
                              double scale) {
+  gsl_rng* r = stream.gsl;
   const double aspect = kind == ShapeKind::sliver ? log_uniform(r, family.aspect) : 1.0;
   std::vector<Vec3> cloud = kind == ShapeKind::mesh
                                 ? family.meshes[gsl_rng_uniform_int(r, family.meshes.size())]
-                                : generate_shape(kind, n, r, aspect);
+                                : generate_shape(kind, n, stream, aspect);
   const Vec3 mean = vertex_mean(cloud);
   for (Vec3& p : cloud)
     p -= mean;
@@ -227,10 +229,6 @@ std::vector<Vec3> duplicate_cloud(int n, gsl_rng* r) {
 
 namespace {
 
-gsl_rng* as_rng(void* r) {
-  return static_cast<gsl_rng*>(r);
-}
-
 /// The family registry's generated shapes: one row each (the ShapeKind, what it makes, its
 /// vertex count when the family gives none, its generator). A new generated shape is its
 /// generator and one row here; family_shapes, generate_shape and the experiment parser follow.
@@ -239,46 +237,57 @@ gsl_rng* as_rng(void* r) {
 /// `true, true` for the clouds a scene's bodies may draw too.
 constexpr ShapeGenerator kShapeGenerators[] = {
     {ShapeKind::sphere_points, "points uniform on the unit sphere", 32,
-     [](int n, void* r, double) { return sphere_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return sphere_cloud(n, r.gsl); }, true, true},
     {ShapeKind::ball_points, "points uniform in the unit ball", 32,
-     [](int n, void* r, double) { return ball_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return ball_cloud(n, r.gsl); }, true, true},
     {ShapeKind::cube_points, "points uniform in the cube [-1, 1]^3", 32,
-     [](int n, void* r, double) { return cube_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return cube_cloud(n, r.gsl); }, true, true},
     {ShapeKind::gaussian, "standard normal cloud", 32,
-     [](int n, void* r, double) { return gaussian_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return gaussian_cloud(n, r.gsl); }, true, true},
     {ShapeKind::box, "demo box (8 vertices)", 8,
-     [](int, void*, double) { return points_of(shapes::box()); }},
+     [](int, RandomStream&, double) { return points_of(shapes::box()); }},
     {ShapeKind::cone, "demo cone (apex and a ring)", 33,
-     [](int n, void*, double) { return points_of(shapes::cone(std::max(n, 4))); }},
+     [](int n, RandomStream&, double) { return points_of(shapes::cone(std::max(n, 4))); }},
     {ShapeKind::cylinder, "demo cylinder (two rings)", 64,
-     [](int n, void*, double) { return points_of(shapes::cylinder(std::max(n + (n & 1), 6))); }},
+     [](int n, RandomStream&, double) {
+       return points_of(shapes::cylinder(std::max(n + (n & 1), 6)));
+     }},
     {ShapeKind::uv_sphere, "demo UV sphere", 482,
-     [](int n, void*, double) { return points_of(shapes::uv_sphere(std::max(n, 6))); }},
+     [](int n, RandomStream&, double) { return points_of(shapes::uv_sphere(std::max(n, 6))); }},
     {ShapeKind::flat_points,
      "points uniform in the unit disk of the plane z = 0 (exactly coplanar)", 32,
-     [](int n, void* r, double) { return disk_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return disk_cloud(n, r.gsl); }, true, true},
     {ShapeKind::collinear_points, "points uniform on the segment [-1, 1] of the x axis", 32,
-     [](int n, void* r, double) { return segment_cloud(n, as_rng(r)); }, true, true},
+     [](int n, RandomStream& r, double) { return segment_cloud(n, r.gsl); }, true, true},
     {ShapeKind::duplicate_points, "n points drawn from three distinct points on the unit sphere",
-     32, [](int n, void* r, double) { return duplicate_cloud(n, as_rng(r)); }},
+     32, [](int n, RandomStream& r, double) { return duplicate_cloud(n, r.gsl); }},
     {ShapeKind::single_point, "one point at the origin", 32,
-     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+     [](int, RandomStream&, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
     {ShapeKind::sliver, "box of extents 1 x 1 x 1/aspect", 32,
-     [](int, void*, double aspect) { return points_of(shapes::box(Vec3(1, 1, 1 / aspect))); }, true,
-     true},
+     [](int, RandomStream&, double aspect) {
+       return points_of(shapes::box(Vec3(1, 1, 1 / aspect)));
+     },
+     true, true},
     {ShapeKind::sphere, "sphere-swept point (a ball of the family's radius)", 32,
-     [](int, void*, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
+     [](int, RandomStream&, double) { return std::vector<Vec3>{Vec3::Zero()}; }},
     {ShapeKind::capsule, "sphere-swept segment (+-1, 0, 0)", 32,
-     [](int, void*, double) {
+     [](int, RandomStream&, double) {
        return std::vector<Vec3>{Vec3(-1, 0, 0), Vec3(1, 0, 0)};
      }},
-    {ShapeKind::prism, "", 32, [](int, void*, double) { return contact_piece(ShapeKind::prism, 1); }, false, true},
-    {ShapeKind::pyramid, "", 32, [](int, void*, double) { return contact_piece(ShapeKind::pyramid, 1); }, false, true},
-    {ShapeKind::segment, "", 2, [](int, void*, double) { return contact_piece(ShapeKind::segment, 1); }, false},
-    {ShapeKind::needle, "", 3, [](int, void*, double a) { return contact_piece(ShapeKind::needle, a); }, false},
-    {ShapeKind::rod, "", 12, [](int, void*, double a) { return contact_piece(ShapeKind::rod, a); }, false},
-    {ShapeKind::wedge, "", 6, [](int, void*, double a) { return contact_piece(ShapeKind::wedge, a); }, false},
-    {ShapeKind::plate, "", 8, [](int, void*, double a) { return contact_piece(ShapeKind::plate, a); }, false},
+    {ShapeKind::prism, "", 32,
+     [](int, RandomStream&, double) { return contact_piece(ShapeKind::prism, 1); }, false, true},
+    {ShapeKind::pyramid, "", 32,
+     [](int, RandomStream&, double) { return contact_piece(ShapeKind::pyramid, 1); }, false, true},
+    {ShapeKind::segment, "", 2,
+     [](int, RandomStream&, double) { return contact_piece(ShapeKind::segment, 1); }, false},
+    {ShapeKind::needle, "", 3,
+     [](int, RandomStream&, double a) { return contact_piece(ShapeKind::needle, a); }, false},
+    {ShapeKind::rod, "", 12,
+     [](int, RandomStream&, double a) { return contact_piece(ShapeKind::rod, a); }, false},
+    {ShapeKind::wedge, "", 6,
+     [](int, RandomStream&, double a) { return contact_piece(ShapeKind::wedge, a); }, false},
+    {ShapeKind::plate, "", 8,
+     [](int, RandomStream&, double a) { return contact_piece(ShapeKind::plate, a); }, false},
 };
 
 }  // namespace
@@ -308,13 +317,13 @@ const ShapeGenerator* find_body_cloud(std::string_view name) {
   return nullptr;
 }
 
-std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng_handle, double aspect) {
+std::vector<Vec3> generate_shape(ShapeKind kind, int n, RandomStream& stream, double aspect) {
   if (n < 1) throw std::invalid_argument("generate_shape: vertex count must be at least 1");
   if (kind == ShapeKind::from_file || kind == ShapeKind::mesh)
     throw std::invalid_argument("generate_shape: this shape's clouds come from the family's files");
   const ShapeGenerator* generator = find_shape_generator(kind);
   if (!generator) throw std::invalid_argument("generate_shape: unknown shape kind");
-  return generator->generate(n, gsl_rng_handle, aspect);
+  return generator->generate(n, stream, aspect);
 }
 
 namespace {
@@ -353,13 +362,14 @@ double draw_radius(gsl_rng* r, const Interval& range) {
 
 /// Two generated shapes, B placed along a random axis by the drawn gap, or at random.
 /// Sphere-swept shapes are placed by the extents of the swept shapes (cores grown by radii).
-void place_generated_pair(gsl_rng* r, const FamilySpec& family, GeneratedCase& out) {
+void place_generated_pair(RandomStream& stream, const FamilySpec& family, GeneratedCase& out) {
+  gsl_rng* r = stream.gsl;
   CaseRecord& rec = out.record;
   const int n_a = log_uniform_count(r, family.vertices_a);
   const int n_b = log_uniform_count(r, family.vertices_b);
   const double ratio = log_uniform(r, family.scale_ratio);
-  out.a = make_shape(r, family.shape_a, n_a, family, family.scale);
-  out.b = make_shape(r, family.shape_b, n_b, family, family.scale * ratio);
+  out.a = make_shape(stream, family.shape_a, n_a, family, family.scale);
+  out.b = make_shape(stream, family.shape_b, n_b, family, family.scale * ratio);
   rec.radius_a = draw_radius(r, family.radius_a) * family.scale;
   rec.radius_b = draw_radius(r, family.radius_b) * family.scale * ratio;
 
@@ -485,15 +495,12 @@ std::span<const FamilyShapeInfo> family_shapes() {
   return shapes;
 }
 
-void GslStreamFree::operator()(void* gsl_rng_handle) const {
-  gsl_rng_free(static_cast<gsl_rng*>(gsl_rng_handle));
+void RandomStreamFree::operator()(RandomStream* stream) const {
+  delete stream;
 }
 
-GslStream case_stream(std::uint64_t seed, std::uint64_t id) {
-  GslStream stream(gsl_rng_alloc(gsl_rng_mt19937));
-  if (!stream) throw std::bad_alloc();
-  gsl_rng_set(static_cast<gsl_rng*>(stream.get()), case_stream_seed(seed, id));
-  return stream;
+OwnedRandomStream case_stream(std::uint64_t seed, std::uint64_t id) {
+  return OwnedRandomStream(new RandomStream(case_stream_seed(seed, id)));
 }
 
 GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_id) {
@@ -503,8 +510,8 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   const std::uint64_t n_values = config.geometry_sweep ? config.geometry_sweep->values.size() : 1;
   const std::uint64_t base_id = case_id / n_values;
   const std::uint64_t value_index = case_id % n_values;
-  const GslStream rng = case_stream(config.seed, base_id);
-  gsl_rng* r = static_cast<gsl_rng*>(rng.get());
+  const OwnedRandomStream stream = case_stream(config.seed, base_id);
+  gsl_rng* r = stream->gsl;
 
   GeneratedCase out;
   CaseRecord& rec = out.record;
@@ -521,7 +528,7 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   } else if (family.contact != ContactType::none) {
     place_contact_pair(r, family, out);
   } else {
-    place_generated_pair(r, family, out);
+    place_generated_pair(*stream, family, out);
   }
   // Large offsets: the whole pair moves, which changes no exact answer but every rounding.
   if (family.offset.hi > 0) {

@@ -3,11 +3,13 @@
 #include "experiment/config/family_config.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
@@ -59,7 +61,6 @@ Interval default_vertices(ShapeKind kind) {
 }
 
 }  // namespace
-
 
 /// Reads [placement] keys from `s` on top of `base`.
 PlacementSpec read_placement(const Section& s, PlacementSpec base) {
@@ -232,68 +233,131 @@ void read_radii(const Section& s, bool exact_pairs, FamilySpec& f) {
   if (const auto r = s.radius_interval("radius_b", kMaxRadius)) f.radius_b = *r;
 }
 
-/// What a [[family]] table describes, read from its `shape` key: the kinds of pair source that
-/// take keys of their own (contact, file, stream, mesh, real_object), or generated shapes.
-struct FamilyForm {
-  bool has_shape = false;  // `shape` sets both shapes (or names a pair source)
-  bool is_contact = false;
-  bool is_stream = false;
-  bool is_file = false;  // pairs read from a file: a file family or a query stream
-  bool is_mesh = false;
-  bool is_real_object = false;
+// ---- the form of a family ----
+//
+// What a [[family]] table describes, read from its `shape` key: generated shapes, or one of
+// the pair sources that take keys of their own. Each form lists the keys that belong to it
+// alone (own_keys), from which refuse_foreign_keys refuses those of every other form.
+
+/// Generated shapes, both named by `shape` (or a `shape` that is not a string, which
+/// read_shape reports).
+struct NamedShape {
+  static constexpr std::array<std::string_view, 0> own_keys{};
+};
+/// Generated shapes named by `shape_a` and `shape_b`: the form of a family without `shape`.
+struct NamedShapePair {
+  static constexpr std::array<std::string_view, 2> own_keys{"shape_a", "shape_b"};
+};
+/// `shape = "contact"`.
+struct ContactPairs {
+  static constexpr std::array<std::string_view, 2> own_keys{"contact", "angle"};
+};
+/// `shape = "file"` (a cases file) or `shape = "stream"` (a scene archive's queries).
+struct StoredPairs {
+  static constexpr std::array<std::string_view, 1> own_keys{"path"};
+  bool stream = false;
+};
+/// `shape = "mesh"`.
+struct MeshFiles {
+  static constexpr std::array<std::string_view, 1> own_keys{"path"};
+};
+/// `shape = "real_object"`.
+struct RealObjects {
+  static constexpr std::array<std::string_view, 1> own_keys{"objects"};
 };
 
+using FamilyForm =
+    std::variant<NamedShape, NamedShapePair, ContactPairs, StoredPairs, MeshFiles, RealObjects>;
+
+/// The keys some form owns, in the order they are checked, each with its refusal in the other
+/// forms (which says where the key belongs).
+struct OwnedKey {
+  std::string_view key;
+  std::string_view refusal;
+};
+constexpr OwnedKey kOwnedKeys[] = {
+    {"objects", "applies only to shape = \"real_object\""},
+    {"contact", "applies only to shape = \"contact\""},
+    {"angle", "applies only to shape = \"contact\""},
+    {"path", "applies only to shape = \"file\", \"stream\" or \"mesh\""},
+    {"shape_a", "cannot be combined with 'shape' (which sets both shapes)"},
+    {"shape_b", "cannot be combined with 'shape' (which sets both shapes)"},
+};
+
+/// Whether every key a form owns is listed in kOwnedKeys: one missing there would be accepted,
+/// and ignored, by the other forms.
+template <typename... Forms>
+constexpr bool every_owned_key_listed(const std::variant<Forms...>*) {
+  const auto listed = [](std::string_view key) {
+    return std::ranges::any_of(kOwnedKeys, [&](const OwnedKey& owned) { return owned.key == key; });
+  };
+  return (std::ranges::all_of(Forms::own_keys, listed) && ...);
+}
+static_assert(every_owned_key_listed(static_cast<const FamilyForm*>(nullptr)));
+
+/// The visitors of a form: one lambda per alternative.
+template <typename... Lambdas>
+struct Overloaded : Lambdas... {
+  using Lambdas::operator()...;
+};
+template <typename... Lambdas>
+Overloaded(Lambdas...) -> Overloaded<Lambdas...>;
+
+/// The form that the table's `shape` names.
 FamilyForm family_form(const Section& s) {
-  FamilyForm form;
-  form.has_shape = s.find("shape") != nullptr;
-  const auto pair_shape = form.has_shape && s.find("shape")->is_string()
-                              ? std::optional<std::string>(*s.string("shape"))
-                              : std::nullopt;
-  form.is_contact = pair_shape == "contact";
-  form.is_stream = pair_shape == "stream";
-  form.is_file = pair_shape == "file" || form.is_stream;
-  form.is_mesh = pair_shape == "mesh";
-  form.is_real_object = pair_shape == "real_object";
-  return form;
+  const toml::node* shape = s.find("shape");
+  if (!shape) return NamedShapePair{};
+  if (!shape->is_string()) return NamedShape{};
+  const std::string name = *s.string("shape");
+  if (name == "contact") return ContactPairs{};
+  if (name == "file" || name == "stream") return StoredPairs{.stream = name == "stream"};
+  if (name == "mesh") return MeshFiles{};
+  if (name == "real_object") return RealObjects{};
+  return NamedShape{};
+}
+
+/// Whether `key` belongs to this form of family.
+bool owns(const FamilyForm& form, std::string_view key) {
+  return std::visit([&](const auto& f) { return std::ranges::count(f.own_keys, key) > 0; }, form);
 }
 
 /// Refuses the keys that belong to another form of family than this one.
 void refuse_foreign_keys(const Section& s, const FamilyForm& form) {
-  if (!form.is_real_object && s.find("objects"))
-    s.fail(*s.find("objects"), "objects", "applies only to shape = \"real_object\"");
-  for (std::string_view key : {"contact", "angle"})
-    if (!form.is_contact && s.find(key))
-      s.fail(*s.find(key), key, "applies only to shape = \"contact\"");
-  if (!form.is_file && !form.is_mesh && s.find("path"))
-    s.fail(*s.find("path"), "path", "applies only to shape = \"file\", \"stream\" or \"mesh\"");
-  for (std::string_view key : {"shape_a", "shape_b"})
-    if (form.has_shape && s.find(key))
-      s.fail(*s.find(key), key, "cannot be combined with 'shape' (which sets both shapes)");
+  for (const OwnedKey& owned : kOwnedKeys)
+    if (s.find(owned.key) && !owns(form, owned.key))
+      s.fail(*s.find(owned.key), owned.key, std::string(owned.refusal));
 }
 
-/// The pair's source: a contact configuration, stored pairs, meshes, real objects, or the
-/// generated shape (`shape`, or `shape_a` with `shape_b`).
-void read_pair_source(const Section& s, const FamilyForm& form, const std::string& experiment_file,
-                      FamilySpec& f) {
-  if (form.is_contact) {
-    read_contact(s, f);
-  } else if (form.is_file) {
-    read_stored_pairs(s, experiment_file, f, form.is_stream);
-  } else if (form.is_mesh) {
-    read_meshes(s, experiment_file, f);
-  } else if (form.is_real_object) {
-    read_real_objects(s, f);
-  } else if (form.has_shape) {
-    f.shape_a = f.shape_b = read_shape(s, "shape");
-  } else if (s.find("shape_a") || s.find("shape_b")) {
-    if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
-    if (!s.find("shape_b")) s.missing("shape_b", "missing (shape_a is given without shape_b)");
-    f.shape_a = read_shape(s, "shape_a");
-    f.shape_b = read_shape(s, "shape_b");
-  } else {
+/// Contact and file families give their pairs exactly (no radii).
+bool exact_pairs(const FamilyForm& form) {
+  return std::holds_alternative<ContactPairs>(form) || std::holds_alternative<StoredPairs>(form);
+}
+
+/// `shape_a` and `shape_b`: a family without `shape` needs both (with neither, the missing key
+/// is `shape`).
+void read_shape_pair(const Section& s, FamilySpec& f) {
+  if (!s.find("shape_a") && !s.find("shape_b"))
     s.missing("shape", "missing (give 'shape', or both 'shape_a' and 'shape_b'); valid shapes: " +
                            shape_names());
-  }
+  if (!s.find("shape_a")) s.missing("shape_a", "missing (shape_b is given without shape_a)");
+  if (!s.find("shape_b")) s.missing("shape_b", "missing (shape_a is given without shape_b)");
+  f.shape_a = read_shape(s, "shape_a");
+  f.shape_b = read_shape(s, "shape_b");
+}
+
+/// The pair's source: the generated shapes (`shape`, or `shape_a` with `shape_b`), a contact
+/// configuration, stored pairs, meshes or real objects.
+void read_pair_source(const Section& s, const FamilyForm& form, const std::string& experiment_file,
+                      FamilySpec& f) {
+  std::visit(Overloaded{
+                 [&](const NamedShape&) { f.shape_a = f.shape_b = read_shape(s, "shape"); },
+                 [&](const NamedShapePair&) { read_shape_pair(s, f); },
+                 [&](const ContactPairs&) { read_contact(s, f); },
+                 [&](const StoredPairs& p) { read_stored_pairs(s, experiment_file, f, p.stream); },
+                 [&](const MeshFiles&) { read_meshes(s, experiment_file, f); },
+                 [&](const RealObjects&) { read_real_objects(s, f); },
+             },
+             form);
 }
 
 /// `vertices` (both shapes), `vertices_a`, `vertices_b`; each shape's default otherwise.
@@ -331,7 +395,7 @@ void read_family_placement(const Section& s, const FamilyForm& form, const Place
   if (const toml::table* sub = s.subtable("placement"))
     f.placement = read_placement(s.child(*sub, s.key_path("placement")), placement);
   const bool touching = f.placement.mode == PlacementMode::touching;
-  if (touching && (!form.is_contact || !exact_contact(f.contact)))
+  if (touching && (!std::holds_alternative<ContactPairs>(form) || !exact_contact(f.contact)))
     s.fail(s.header_line(), "placement.mode",
            "\"touching\" needs an exact contact family (shape = \"contact\", not parallel-edges "
            "or the thin contacts)");
@@ -343,18 +407,27 @@ std::string read_family_name(const Section& s, const FamilyForm& form, const Fam
     if (name->empty()) s.fail(*s.find("name"), "name", "must not be empty");
     return *name;
   }
-  if (form.is_contact)
-    return "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
-  if (form.is_file) return "file:" + f.path;
-  if (form.is_mesh) return "mesh:" + f.path;
-  if (form.is_real_object)
-    return s.find("objects")->is_string() ? "real_object:all" : "real_object";
-  if (f.shape_a == f.shape_b) return std::string(to_string(f.shape_a));
-  return std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+  const auto generated_name = [&] {
+    if (f.shape_a == f.shape_b) return std::string(to_string(f.shape_a));
+    return std::string(to_string(f.shape_a)) + "/" + std::string(to_string(f.shape_b));
+  };
+  return std::visit(
+      Overloaded{
+          [&](const NamedShape&) { return generated_name(); },
+          [&](const NamedShapePair&) { return generated_name(); },
+          [&](const ContactPairs&) {
+            return "contact-" + std::string(f.contact_any ? "any" : to_string(f.contact));
+          },
+          [&](const StoredPairs&) { return "file:" + f.path; },
+          [&](const MeshFiles&) { return "mesh:" + f.path; },
+          [&](const RealObjects&) {
+            return std::string(s.find("objects")->is_string() ? "real_object:all" : "real_object");
+          },
+      },
+      form);
 }
 
 }  // namespace
-
 
 FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                        const std::string& experiment_file) {
@@ -367,7 +440,7 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
   read_pair_source(s, form, experiment_file, f);
   read_vertex_counts(s, f);
   read_pair_draw(s, f);
-  read_radii(s, form.is_contact || form.is_file, f);
+  read_radii(s, exact_pairs(form), f);
   read_family_placement(s, form, placement, f);
   f.name = read_family_name(s, form, f);
   return f;

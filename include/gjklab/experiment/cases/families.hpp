@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/cases/records.hpp"
+#include "gjklab/experiment/config/config.hpp"
 
 namespace gjklab::experiment {
 
@@ -29,17 +29,20 @@ struct GeneratedCase {
 /// integers, so the case ids 0 … 2^32 − 1 of one experiment get pairwise different seeds.
 std::uint32_t case_stream_seed(std::uint64_t seed, std::uint64_t case_id);
 
-/// Frees a GSL generator (gsl_rng_free).
-struct GslStreamFree {
-  void operator()(void* gsl_rng) const;
+/// The random stream the generators draw from: a GSL gsl_rng_mt19937 in a type of our own,
+/// because gsl_rng (a typedef of an anonymous struct) cannot be declared without GSL's header,
+/// which stays out of the public headers. Defined in src/experiment/cases/random_stream.hpp.
+struct RandomStream;
+/// Deletes a RandomStream (out of line: the type is complete only inside the layer).
+struct RandomStreamFree {
+  void operator()(RandomStream* stream) const;
 };
-/// An owned GSL generator: a gsl_rng*, as void* to keep GSL out of this header (generate_shape
-/// takes it so).
-using GslStream = std::unique_ptr<void, GslStreamFree>;
+/// An owned random stream, as case_stream makes them.
+using OwnedRandomStream = std::unique_ptr<RandomStream, RandomStreamFree>;
 /// The generator of stream `id` under `seed`: gsl_rng_mt19937 seeded with
 /// case_stream_seed(seed, id). Every case of an experiment draws from its own (id: the case),
 /// and so does each body group of a scene (id: the group). Throws std::bad_alloc.
-GslStream case_stream(std::uint64_t seed, std::uint64_t id);
+OwnedRandomStream case_stream(std::uint64_t seed, std::uint64_t id);
 
 /// Generates case `case_id` of the experiment (family drawn by weight, then vertex counts,
 /// shapes, rotations, scale and placement), from a GSL generator seeded by
@@ -65,8 +68,8 @@ struct ShapeGenerator {
   std::string_view description;
   int default_vertices;  ///< the vertex count when the family gives none
   /// The points before rotation, scale and placement, for n >= 1 requested vertices (see
-  /// generate_shape; `gsl_rng` is a gsl_rng*).
-  std::vector<Vec3> (*generate)(int n, void* gsl_rng, double aspect);
+  /// generate_shape).
+  std::vector<Vec3> (*generate)(int n, RandomStream& stream, double aspect);
   bool nameable = true;  ///< false: a part of other families only (prism, pyramid)
   /// A scene's body group may name it (`[[bodies]] shape = NAME`): each body draws its own
   /// cloud. Not the shapes a scene builds itself (the demo shapes, sphere, capsule).
@@ -87,7 +90,7 @@ const ShapeGenerator* find_body_cloud(std::string_view name);
 /// 8 vertices whatever n, cone(max(n, 4)), cylinder(n rounded up to even, at least 6) and
 /// uv_sphere(max(n, 6)), which rounds down (see geometry/shapes.hpp). single_point, sliver,
 /// prism and pyramid ignore n; `aspect` is the sliver's aspect ratio (a box 1 × 1 × 1/aspect).
-/// `gsl_rng` is a gsl_rng*.
-std::vector<Vec3> generate_shape(ShapeKind kind, int n, void* gsl_rng, double aspect = 10);
+/// The random clouds draw from `stream`.
+std::vector<Vec3> generate_shape(ShapeKind kind, int n, RandomStream& stream, double aspect = 10);
 
 }  // namespace gjklab::experiment
