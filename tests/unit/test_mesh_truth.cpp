@@ -11,6 +11,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -160,10 +162,9 @@ mpq_class point_triangle_distance2(const bf::Q3& p, const Tri& t) {
 /// of the lines fall inside both, else from an end point.
 mpq_class segment_distance2(const bf::Q3& p1, const bf::Q3& q1, const bf::Q3& p2,
                             const bf::Q3& q2) {
-  mpq_class best = std::min({bf::point_segment_distance2(p1, p2, q2),
-                             bf::point_segment_distance2(q1, p2, q2),
-                             bf::point_segment_distance2(p2, p1, q1),
-                             bf::point_segment_distance2(q2, p1, q1)});
+  mpq_class best =
+      std::min({bf::point_segment_distance2(p1, p2, q2), bf::point_segment_distance2(q1, p2, q2),
+                bf::point_segment_distance2(p2, p1, q1), bf::point_segment_distance2(q2, p1, q1)});
   const bf::Q3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const mpq_class a = bf::dot(d1, d1), e = bf::dot(d2, d2), b = bf::dot(d1, d2);
   const mpq_class c = bf::dot(d1, r), f = bf::dot(d2, r), denom = a * e - b * b;
@@ -286,9 +287,9 @@ TEST_CASE("mesh truth: on convex meshes it equals the convex oracle on the verte
     const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
     const exact::OracleAnswer o = exact::solve(a.vertices, b.vertices, {});
     INFO("pair " << k << ": mesh " << t.distance_squared.numerator() << "/"
-                  << t.distance_squared.denominator() << " (" << t.distance << "), oracle "
-                  << o.distance_squared.numerator() << "/" << o.distance_squared.denominator()
-                  << " (" << o.distance << "), intersect " << o.intersect);
+                 << t.distance_squared.denominator() << " (" << t.distance << "), oracle "
+                 << o.distance_squared.numerator() << "/" << o.distance_squared.denominator()
+                 << " (" << o.distance << "), intersect " << o.intersect);
     CHECK(t.intersect == o.intersect);
     CHECK(t.distance_squared == o.distance_squared);
   }
@@ -350,8 +351,7 @@ TEST_CASE("mesh truth: cross-check on 2000 pairs", "[.mesh-truth-crosscheck]") {
   WARN("2000 pairs agree; " << intersecting << " intersecting");
 }
 
-TEST_CASE("mesh truth: time on two meshes of 5000 triangles near contact",
-          "[.mesh-truth-timing]") {
+TEST_CASE("mesh truth: time on two meshes of 5000 triangles near contact", "[.mesh-truth-timing]") {
   // Prints the median time of the exact truth (not asserted: speed is for measuring). Two
   // non-convex star meshes of 5000 triangles each, B placed along x so that the boxes are
   // 1e-3 apart: near contact, where the culling has the least room.
@@ -369,17 +369,93 @@ TEST_CASE("mesh truth: time on two meshes of 5000 triangles near contact",
     b = posed(b, 1, Vec3::UnitZ(), 0, Vec3(a_max - b_min + 1e-3, 0, 0));
     const auto t0 = std::chrono::steady_clock::now();
     const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                     .count());
+    ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     evaluations += t.exact_distance_evaluations;
     tests += t.exact_intersection_tests;
     CHECK_FALSE(t.intersect);
   }
   std::sort(ms.begin(), ms.end());
-  WARN("5000 x 5000 triangles near contact: median " << ms[ms.size() / 2] << " ms (min " << ms[0]
-                                                     << ", max " << ms.back() << "); exact "
-                                                     << "distance evaluations per pair "
-                                                     << evaluations / 21.0
-                                                     << ", exact intersection tests per pair "
-                                                     << tests / 21.0);
+  WARN("5000 x 5000 triangles near contact: median "
+       << ms[ms.size() / 2] << " ms (min " << ms[0] << ", max " << ms.back() << "); exact "
+       << "distance evaluations per pair " << evaluations / 21.0
+       << ", exact intersection tests per pair " << tests / 21.0);
+}
+
+namespace {
+
+/// A closed cube [0, 1]³ whose six faces are n × n grids of quads (two triangles each), shared
+/// vertices along the edges; faces counter-clockwise seen from outside.
+Mesh grid_cube(int n) {
+  Mesh m;
+  std::map<std::array<int, 3>, std::uint32_t> index;  // lattice point → vertex
+  auto vertex = [&](std::array<int, 3> p) {
+    const auto [it, added] = index.try_emplace(p, static_cast<std::uint32_t>(m.vertices.size()));
+    if (added) m.vertices.emplace_back(double(p[0]) / n, double(p[1]) / n, double(p[2]) / n);
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> p{};
+            p[axis] = side * n;
+            p[u] = i + di;
+            p[v] = j + dj;
+            return vertex(p);
+          };
+          const std::uint32_t a = at(0, 0), b = at(1, 0), c = at(1, 1), d = at(0, 1);
+          // (u, v, axis) is right-handed: counter-clockwise in (u, v) faces +axis.
+          if (side == 1) {
+            m.faces.push_back({a, b, c});
+            m.faces.push_back({a, c, d});
+          } else {
+            m.faces.push_back({a, c, b});
+            m.faces.push_back({a, d, c});
+          }
+        }
+    }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("mesh truth: facing grids a few ulps apart, the minimum decided in the last bits",
+          "[unit][mesh-truth]") {
+  // Two grid cubes face to face along x, the facing faces' inner vertices moved by a few ulps,
+  // so that hundreds of triangle pairs lie within rounding of the minimum: the floating-point
+  // culling must keep every pair that can attain it. The brute force takes the triangles near
+  // the facing faces (every other pair is at least 0.5 apart).
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  for (int trial = 0; trial < 3; ++trial) {
+    Mesh a = grid_cube(4), b = grid_cube(4);
+    for (Vec3& v : a.vertices)
+      if (v.x() == 1 && v.y() > 0 && v.y() < 1 && v.z() > 0 && v.z() < 1)
+        v.x() = 1 + ulps(rng) * std::numeric_limits<double>::epsilon();
+    for (Vec3& v : b.vertices) {
+      const bool inner = v.x() == 0 && v.y() > 0 && v.y() < 1 && v.z() > 0 && v.z() < 1;
+      v.x() += 1 + 10 * std::numeric_limits<double>::epsilon();
+      if (inner) v.x() += ulps(rng) * std::numeric_limits<double>::epsilon();
+    }
+    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    Mesh near_a{a.vertices, {}}, near_b{b.vertices, {}};
+    for (const Face& f : a.faces)
+      if (a.vertices[f[0]].x() > 0.7 || a.vertices[f[1]].x() > 0.7 || a.vertices[f[2]].x() > 0.7)
+        near_a.faces.push_back(f);
+    for (const Face& f : b.faces)
+      if (b.vertices[f[0]].x() < 1.3 || b.vertices[f[1]].x() < 1.3 || b.vertices[f[2]].x() < 1.3)
+        near_b.faces.push_back(f);
+    mpq_class best = -1;
+    for (const Face& fa : near_a.faces)
+      for (const Face& fb : near_b.faces) {
+        const mpq_class d2 = triangle_distance2(exact_triangle(a, fa), exact_triangle(b, fb));
+        if (best < 0 || d2 < best) best = d2;
+      }
+    INFO("trial " << trial << ": exact evaluations " << t.exact_distance_evaluations);
+    CHECK(t.intersect == (best == 0));
+    CHECK(as_mpq(t.distance_squared) == best);
+  }
 }
