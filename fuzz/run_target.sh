@@ -37,6 +37,17 @@ case $target in
     done
     seeds+=("$scratch/points")
     ;;
+  closed_mesh)
+    # The first byte picks the extension (fuzz/closed_mesh.cpp): 0 off, 1 obj, 2 ply, 3 stl.
+    mkdir -p "$scratch/meshes"
+    for f in "$root"/tests/data/meshes/*.* "$root"/tests/data/meshes_closed/*.* "$root"/tests/data/meshes_bad/*.*; do
+      case ${f##*.} in
+        off) b='\000' ;; obj) b='\001' ;; ply) b='\002' ;; stl) b='\003' ;; *) continue ;;
+      esac
+      { printf "$b"; head -c 65536 "$f"; } >"$scratch/meshes/$(basename "$f")"
+    done
+    seeds+=("$scratch/meshes")
+    ;;
   cases_line)
     seeds+=("$root/tests/regression/data" "$root/tests/regression/data/hostile" "$root/experiments/data")
     max_len=16384

@@ -1,5 +1,6 @@
 // Mesh files as point clouds: the vertices of an OFF, OBJ, PLY or STL file (read with CGAL's
-// I/O, compiled only in src/exact/), whose convex hull is the shape. Faces are ignored.
+// I/O, compiled only in src/exact/), whose convex hull is the shape. Faces are ignored here;
+// exact/closed_mesh.hpp reads them, for closed triangle meshes.
 #pragma once
 
 #include <filesystem>

@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "gjklab/geometry/polytope.hpp"
+#include "exact/io/mesh_soup.hpp"
 #include "exact/io/ply_reader.hpp"
+#include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::exact {
 
@@ -138,7 +139,9 @@ bool is_mesh_file(const std::filesystem::path& file) {
   return ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl";
 }
 
-std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
+namespace detail {
+
+MeshSoup read_mesh_soup(const std::filesystem::path& file, bool keep_faces) {
   const std::string name = file.string();
   if (!is_mesh_file(file))
     throw std::runtime_error(name + ": not a mesh file (use .off, .obj, .ply or .stl)");
@@ -150,29 +153,35 @@ std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);
   if (ext == ".ply") {
     check_ply_header(file, file_size);
-    std::vector<Vec3> cloud = detail::read_ply_vertices(file);
-    if (const std::string problem = describe_invalid_cloud(cloud); !problem.empty())
-      throw std::runtime_error(name + ": " + problem);
-    return cloud;
+    return read_ply_mesh(file, keep_faces);
   }
   if (ext == ".off") check_off_header(file, file_size);
   std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
+  MeshSoup soup;
   bool read = false;
   try {
-    read = CGAL::IO::read_polygon_soup(name, points, faces);
+    read = CGAL::IO::read_polygon_soup(name, points, soup.faces);
   } catch (const std::exception& e) {
     // CGAL's readers let the standard library's exceptions through: a PLY list whose count is
     // negative (a signed type) becomes a resize to 2^64 - 1 elements and std::length_error.
     throw std::runtime_error(name + ": cannot read the mesh (" + e.what() + ")");
   }
   if (!read) throw std::runtime_error(name + ": cannot read the mesh (malformed file?)");
-  std::vector<Vec3> cloud;
-  cloud.reserve(points.size());
+  // CGAL's STL reader already merges exactly equal points (a map from point to index, filled
+  // in order of first appearance), so every format gives shared vertices here.
+  if (!keep_faces) soup.faces.clear();
+  soup.vertices.reserve(points.size());
   for (const Point& p : points)
-    cloud.emplace_back(p.x(), p.y(), p.z());
+    soup.vertices.emplace_back(p.x(), p.y(), p.z());
+  return soup;
+}
+
+}  // namespace detail
+
+std::vector<Vec3> read_mesh_vertices(const std::filesystem::path& file) {
+  std::vector<Vec3> cloud = detail::read_mesh_soup(file, false).vertices;
   if (const std::string problem = describe_invalid_cloud(cloud); !problem.empty())
-    throw std::runtime_error(name + ": " + problem);
+    throw std::runtime_error(file.string() + ": " + problem);
   return cloud;
 }
 

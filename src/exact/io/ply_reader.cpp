@@ -259,9 +259,34 @@ class Body {
   std::string file_;
 };
 
-/// Reads one record of `e`, keeping x, y, z in `out` when `keep` (vertex element).
-void read_record(Body& body, const Element& e, Vec3* out) {
+bool is_index_list(const Property& p) {
+  return p.count_type && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
+
+/// Reads a face's vertex index list into `face`: each a non-negative integer (any PLY type).
+/// No reserve: the count is only bounded by the bytes left, and a garbled one must fail at
+/// the end of the file, not as an allocation of 8 bytes per byte left.
+void read_indices(Body& body, const Property& p, std::vector<std::size_t>& face) {
+  const std::uint64_t n = body.count(*p.count_type);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const double index = body.scalar(p.type);
+    // 2^53: every integer below is exact in a double and fits std::size_t.
+    if (!(index >= 0 && index < 9007199254740992.0) ||
+        index != static_cast<double>(static_cast<std::uint64_t>(index)))
+      throw std::runtime_error("a face index that is not a non-negative integer");
+    face.push_back(static_cast<std::size_t>(index));
+  }
+}
+
+/// Reads one record of `e`, keeping x, y, z in `out` (vertex element) and the vertex index
+/// list in `face` (face element, faces asked for) when they are given.
+void read_record(Body& body, const Element& e, Vec3* out, std::vector<std::size_t>* face) {
   for (const Property& p : e.properties) {
+    if (face && is_index_list(p)) {
+      read_indices(body, p, *face);
+      face = nullptr;  // the first index list only
+      continue;
+    }
     if (p.count_type) {
       body.skip(p.type, body.count(*p.count_type));
       continue;
@@ -282,36 +307,49 @@ bool has_coordinates(const Element& e) {
 
 }  // namespace
 
-std::vector<Vec3> read_ply_vertices(const std::filesystem::path& path) {
+MeshSoup read_ply_mesh(const std::filesystem::path& path, bool keep_faces) {
   const std::string file = path.string();
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(file, 0, "cannot open the file");
   const Header header = read_header(in, file);
   Body body(std::string(std::istreambuf_iterator<char>(in), {}), header.format, file);
-  std::optional<std::vector<Vec3>> cloud;
+  MeshSoup soup;
+  bool have_vertices = false;
+  bool have_faces = false;
   // Every element is read, the ones after the vertices too (and dropped), so that a file whose
   // body does not match its header is an error rather than half read.
   for (const Element& e : header.elements) {
-    const bool vertices = e.name == "vertex" && !cloud;
+    const bool vertices = e.name == "vertex" && !have_vertices;
+    const bool faces = keep_faces && e.name == "face" && !have_faces;
     if (vertices && !has_coordinates(e))
       fail(file, 0, "the vertex element has no scalar x, y and z");
-    if (vertices) cloud.emplace();
+    if (faces && std::none_of(e.properties.begin(), e.properties.end(), is_index_list))
+      fail(file, 0, "the face element has no list 'vertex_indices' (or 'vertex_index')");
+    have_vertices = have_vertices || vertices;
+    have_faces = have_faces || faces;
     std::uint64_t k = 0;
     try {
       for (; k < e.count; ++k) {
         Vec3 p = Vec3::Zero();
-        read_record(body, e, vertices ? &p : nullptr);
-        if (vertices) cloud->push_back(p);
+        std::vector<std::size_t> face;
+        read_record(body, e, vertices ? &p : nullptr, faces ? &face : nullptr);
+        if (vertices) soup.vertices.push_back(p);
+        if (faces) soup.faces.push_back(std::move(face));
       }
     } catch (const std::runtime_error& problem) {
       std::string message = problem.what();
+      if (!message.starts_with(file)) message = file + ": " + message;
       message.append(" (in ").append(e.name).append(" ").append(std::to_string(k + 1));
       message.append(" of ").append(std::to_string(e.count)).append(")");
       throw std::runtime_error(message);
     }
   }
-  if (!cloud) fail(file, 0, "no vertex element");
-  return std::move(*cloud);
+  if (!have_vertices) fail(file, 0, "no vertex element");
+  return soup;
+}
+
+std::vector<Vec3> read_ply_vertices(const std::filesystem::path& path) {
+  return read_ply_mesh(path, false).vertices;
 }
 
 }  // namespace gjklab::exact::detail
