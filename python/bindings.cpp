@@ -501,4 +501,5 @@ PYBIND11_MODULE(_gjklab, m) {
   def_exact_answer(m);
   def_run_report(m);
   def_functions(m);
+  def_meshes(m);
 }

@@ -41,4 +41,7 @@ const experiment::AlgorithmInfo& algorithm_named(const std::string& name);
 /// The algorithm and its options from keyword arguments, checked as an experiment file's.
 experiment::AlgorithmSpec spec_from(const std::string& algorithm, const py::kwargs& options);
 
+/// gjklab.read_closed_mesh and gjklab.exact_mesh (meshes.cpp).
+void def_meshes(py::module_& m);
+
 }  // namespace gjklab::python

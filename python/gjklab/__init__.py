@@ -9,6 +9,8 @@ The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` comm
     families()                                        every shape an experiment's family can name
     real_objects()                                    names for shape = "real_object"
     read_points(path)                                 a point or mesh file as an n x 3 array
+    read_closed_mesh(path)                            a closed triangle mesh: (vertices, faces)
+    exact_mesh(a, b)                                  the exact answer for two closed meshes' solids
     run(experiment, out=..., threads=...)             an experiment file (or TOML text) -> archive
 
 and read_archive(path) reads an archive into pandas DataFrames.
@@ -21,8 +23,10 @@ from ._gjklab import (
     Shape,
     algorithms,
     exact,
+    exact_mesh,
     families,
     query,
+    read_closed_mesh,
     read_points,
     real_objects,
     run,
@@ -37,9 +41,11 @@ __all__ = [
     "Shape",
     "algorithms",
     "exact",
+    "exact_mesh",
     "families",
     "query",
     "read_archive",
+    "read_closed_mesh",
     "read_points",
     "real_objects",
     "run",

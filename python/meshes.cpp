@@ -1,0 +1,137 @@
+// Closed triangle meshes in Python: reading one, and the exact truth for the solids two of them
+// bound (gjklab.read_closed_mesh, gjklab.exact_mesh).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "gjklab/exact/closed_mesh.hpp"
+#include "gjklab/exact/mesh_truth.hpp"
+#include "inputs.hpp"
+
+namespace gjklab::python {
+
+namespace {
+
+const char* contact_name(exact::MeshContact c) {
+  switch (c) {
+    case exact::MeshContact::separated:
+      return "separated";
+    case exact::MeshContact::triangles_meet:
+      return "triangles_meet";
+    case exact::MeshContact::a_inside_b:
+      return "a_inside_b";
+    case exact::MeshContact::b_inside_a:
+      return "b_inside_a";
+  }
+  return "separated";
+}
+
+/// Faces from an m×3 integer array (any integer dtype; values checked against uint32).
+std::vector<MeshFace> faces_of(const py::handle& object, const std::string& name) {
+  const auto array = py::array_t<std::int64_t, py::array::forcecast>::ensure(object);
+  if (!array || array.ndim() != 2 || array.shape(1) != 3) {
+    PyErr_Clear();
+    throw py::value_error(name + ": faces must be an m×3 array of vertex indices");
+  }
+  const auto r = array.unchecked<2>();
+  std::vector<MeshFace> faces(static_cast<std::size_t>(r.shape(0)));
+  for (py::ssize_t f = 0; f < r.shape(0); ++f)
+    for (int k = 0; k < 3; ++k) {
+      if (r(f, k) < 0 || r(f, k) > 0xffffffffLL)
+        throw py::value_error(name + ": face " + std::to_string(f) + " has index " +
+                              std::to_string(r(f, k)));
+      faces[static_cast<std::size_t>(f)][k] = static_cast<std::uint32_t>(r(f, k));
+    }
+  return faces;
+}
+
+/// A mesh from a path (read and validated as gjklab reads mesh files) or from a pair
+/// (vertices n×3 float64, faces m×3 integers), validated the same way.
+TriangleMesh mesh_of(const py::handle& object, const char* side) {
+  const std::string name = std::string("mesh ") + side;
+  try {
+    if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
+      const auto path = py::module_::import("os").attr("fspath")(object).cast<std::string>();
+      return exact::read_closed_mesh(path);
+    }
+    if (!py::isinstance<py::tuple>(object) && !py::isinstance<py::list>(object))
+      throw py::value_error(name + ": expected a mesh file path or (vertices, faces)");
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(object);
+    if (pair.size() != 2)
+      throw py::value_error(name + ": expected a mesh file path or (vertices, faces)");
+    const CloudArray cloud = cloud_array(pair[0], side);
+    TriangleMesh mesh;
+    mesh.vertices.resize(cloud.rows.count);
+    const auto* base = static_cast<const char*>(cloud.rows.data);
+    for (std::size_t i = 0; i < cloud.rows.count; ++i)
+      for (int k = 0; k < 3; ++k)
+        mesh.vertices[i][k] = *reinterpret_cast<const double*>(
+            base + static_cast<std::ptrdiff_t>(i) * cloud.rows.row_stride +
+            k * cloud.rows.column_stride);
+    mesh.faces = faces_of(pair[1], name);
+    exact::validate_closed_mesh(mesh, name);
+    return mesh;
+  } catch (const std::runtime_error& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+py::dict truth_dict(const exact::MeshTruth& t) {
+  static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
+  py::dict d;
+  d["intersect"] = t.intersect;
+  d["contact"] = contact_name(t.contact);
+  d["distance"] = t.distance;
+  d["distance_squared"] = Fraction(py::int_(py::str(t.distance_squared.numerator())),
+                                   py::int_(py::str(t.distance_squared.denominator())));
+  d["face_a"] = t.face_a;
+  d["face_b"] = t.face_b;
+  d["exact_intersection_tests"] = t.exact_intersection_tests;
+  d["exact_distance_evaluations"] = t.exact_distance_evaluations;
+  return d;
+}
+
+}  // namespace
+
+void def_meshes(py::module_& m) {
+  m.def(
+      "read_closed_mesh",
+      [](const py::handle& path) {
+        const TriangleMesh mesh = mesh_of(path, "a");
+        py::array_t<double> vertices(
+            {static_cast<py::ssize_t>(mesh.vertices.size()), py::ssize_t{3}});
+        py::array_t<std::uint32_t> faces(
+            {static_cast<py::ssize_t>(mesh.faces.size()), py::ssize_t{3}});
+        auto v = vertices.mutable_unchecked<2>();
+        auto f = faces.mutable_unchecked<2>();
+        for (py::ssize_t i = 0; i < v.shape(0); ++i)
+          for (int k = 0; k < 3; ++k)
+            v(i, k) = mesh.vertices[static_cast<std::size_t>(i)][k];
+        for (py::ssize_t i = 0; i < f.shape(0); ++i)
+          for (int k = 0; k < 3; ++k)
+            f(i, k) = mesh.faces[static_cast<std::size_t>(i)][k];
+        return py::make_tuple(vertices, faces);
+      },
+      py::arg("path"),
+      R"(A closed triangle mesh file (.off, .obj, .ply or .stl) as (vertices, faces): an n×3
+float64 array and an m×3 uint32 array, counter-clockwise seen from outside. Raises ValueError
+naming the file and the first offending face when the mesh is not closed, not consistently
+oriented, self-intersecting, inverted or degenerate.)");
+  m.def(
+      "exact_mesh",
+      [](const py::handle& a, const py::handle& b) {
+        const TriangleMesh ma = mesh_of(a, "a"), mb = mesh_of(b, "b");
+        return truth_dict(exact::mesh_truth(ma, mb));
+      },
+      py::arg("a"), py::arg("b"),
+      R"(The exact answer for the solids two closed meshes bound; each mesh is a file path or
+(vertices, faces). Returns a dict: intersect, contact ('separated', 'triangles_meet',
+'a_inside_b', 'b_inside_a'), distance_squared (fractions.Fraction, exact), distance (correctly
+rounded), face_a and face_b (the triangles that meet or attain the distance; -1 for a
+containment), and the exact evaluations the answer took.)");
+}
+
+}  // namespace gjklab::python

@@ -1,0 +1,65 @@
+"""Closed meshes in Python: gjklab.read_closed_mesh and the exact truth for two solids,
+gjklab.exact_mesh, against answers known in exact arithmetic."""
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import gjklab
+from conftest import SOURCE_DIR
+
+BOX = SOURCE_DIR / "tests" / "data" / "meshes_closed" / "box.off"
+BAD = SOURCE_DIR / "tests" / "data" / "meshes_bad"
+
+
+def test_read_closed_mesh_gives_the_file_vertices_and_faces():
+    vertices, faces = gjklab.read_closed_mesh(BOX)
+    assert vertices.shape == (8, 3) and vertices.dtype == np.float64
+    assert faces.shape == (12, 3) and faces.dtype == np.uint32
+    assert sorted(map(tuple, vertices.tolist()))[0] == (0.0, 0.0, 0.0)
+
+
+def test_exact_mesh_separated_by_an_exact_gap():
+    vertices, faces = gjklab.read_closed_mesh(BOX)
+    gap = 2.0**-40
+    moved = vertices + np.array([1.0 + gap, 0.25, 0.5])
+    answer = gjklab.exact_mesh(BOX, (moved, faces))
+    assert not answer["intersect"]
+    assert answer["contact"] == "separated"
+    assert answer["distance_squared"] == Fraction(gap) ** 2
+    assert answer["distance"] == gap
+    assert answer["face_a"] >= 0 and answer["face_b"] >= 0
+
+
+def test_exact_mesh_touching_and_contained():
+    vertices, faces = gjklab.read_closed_mesh(BOX)
+    touching = gjklab.exact_mesh((vertices, faces), (vertices + [1.0, 0.5, 0.5], faces))
+    assert touching["intersect"] and touching["contact"] == "triangles_meet"
+    assert touching["distance_squared"] == 0
+    small = vertices * 0.25 + 0.375
+    inside = gjklab.exact_mesh((vertices, faces), (small, faces))
+    assert inside["intersect"] and inside["contact"] == "b_inside_a"
+    assert inside["face_a"] == -1
+
+
+@pytest.mark.parametrize("name, message", [
+    ("open_box.off", "not closed"),
+    ("box_inverted.off", "negative signed volume"),
+    ("two_tetrahedra.off", "self-intersecting"),
+])
+def test_bad_meshes_are_refused_naming_the_file(name, message):
+    with pytest.raises(ValueError) as refused:
+        gjklab.exact_mesh(BAD / name, BOX)
+    assert name in str(refused.value)
+    assert message in str(refused.value)
+
+
+def test_bad_arrays_are_refused():
+    vertices, faces = gjklab.read_closed_mesh(BOX)
+    with pytest.raises(ValueError, match="mesh b"):
+        gjklab.exact_mesh(BOX, (vertices, faces[:-1]))  # one face missing: open
+    with pytest.raises(ValueError, match="faces must be an m×3 array"):
+        gjklab.exact_mesh(BOX, (vertices, faces[:, :2]))
+    with pytest.raises(ValueError, match="face 0 has index -1"):
+        gjklab.exact_mesh(BOX, (vertices, np.full((12, 3), -1)))
