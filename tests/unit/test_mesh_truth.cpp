@@ -26,13 +26,8 @@ namespace bf = gjklab::testing::brute_force;
 
 namespace {
 
-using Face = std::array<std::uint32_t, 3>;
-
-struct Mesh {
-  std::vector<Vec3> vertices;
-  std::vector<Face> faces;
-  exact::MeshView view() const { return {vertices, faces}; }
-};
+using Face = MeshFace;
+using Mesh = TriangleMesh;
 
 /// A star-shaped closed mesh: a UV sphere of `rings` × `segments` whose vertices lie at radius
 /// r(v) ∈ [lo, 1] along their directions (lo = 1: convex). Each triangle stays in the cone of
@@ -244,7 +239,7 @@ TEST_CASE("mesh truth: non-convex star meshes agree with the brute force over al
   for (int k = 0; k < 16; ++k) {
     const Mesh a = star_mesh(4, 6, 0.55, rng);
     const Mesh b = random_partner(star_mesh(4, 5, 0.55, rng), rng);
-    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
     const BruteAnswer brute = brute_mesh_truth(a, b, rng);
     INFO("pair " << k);
     REQUIRE(t.intersect == brute.intersect);
@@ -263,19 +258,19 @@ TEST_CASE("mesh truth: a small star inside a star is contained, either way round
   std::mt19937_64 rng(3);
   const Mesh outer = star_mesh(5, 7, 0.6, rng);
   const Mesh inner = posed(star_mesh(4, 5, 0.6, rng), 0.3, Vec3(1, 1, 0), 0.7, Vec3(0.05, 0, 0));
-  const exact::MeshTruth ab = exact::mesh_truth(outer.view(), inner.view());
+  const exact::MeshTruth ab = exact::mesh_truth(exact::MeshView(outer), exact::MeshView(inner));
   CHECK(ab.intersect);
   CHECK(ab.contact == exact::MeshContact::b_inside_a);
-  const exact::MeshTruth ba = exact::mesh_truth(inner.view(), outer.view());
+  const exact::MeshTruth ba = exact::mesh_truth(exact::MeshView(inner), exact::MeshView(outer));
   CHECK(ba.intersect);
   CHECK(ba.contact == exact::MeshContact::a_inside_b);
   CHECK(brute_mesh_truth(outer, inner, rng).intersect);
   // Moved out through the outer surface: the triangles meet; moved far: separated.
   const Mesh crossing = posed(inner, 1, Vec3::UnitZ(), 0, Vec3(0.55, 0, 0));
-  CHECK(exact::mesh_truth(outer.view(), crossing.view()).contact ==
+  CHECK(exact::mesh_truth(exact::MeshView(outer), exact::MeshView(crossing)).contact ==
         exact::MeshContact::triangles_meet);
   const Mesh far = posed(inner, 1, Vec3::UnitZ(), 0, Vec3(3, 0, 0));
-  CHECK_FALSE(exact::mesh_truth(outer.view(), far.view()).intersect);
+  CHECK_FALSE(exact::mesh_truth(exact::MeshView(outer), exact::MeshView(far)).intersect);
 }
 
 TEST_CASE("mesh truth: on convex meshes it equals the convex oracle on the vertex clouds",
@@ -284,7 +279,7 @@ TEST_CASE("mesh truth: on convex meshes it equals the convex oracle on the verte
   for (int k = 0; k < 30; ++k) {
     const Mesh a = hull_mesh(random_partner(star_mesh(5, 8, 0.6, rng), rng).vertices);
     const Mesh b = hull_mesh(random_partner(star_mesh(4, 7, 0.6, rng), rng).vertices);
-    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
     const exact::OracleAnswer o = exact::solve(a.vertices, b.vertices, {});
     INFO("pair " << k << ": mesh " << t.distance_squared.numerator() << "/"
                  << t.distance_squared.denominator() << " (" << t.distance << "), oracle "
@@ -305,12 +300,12 @@ TEST_CASE("mesh truth: touching meshes meet exactly, a gap of one ulp does not c
   cube.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                 {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
   const Mesh touching = posed(cube, 1, Vec3::UnitZ(), 0, Vec3(1, 0.25, 0.5));
-  const exact::MeshTruth t = exact::mesh_truth(cube.view(), touching.view());
+  const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(cube), exact::MeshView(touching));
   CHECK(t.intersect);
   CHECK(t.contact == exact::MeshContact::triangles_meet);
   const double next = std::nextafter(1.0, 2.0);
   const Mesh apart = posed(cube, 1, Vec3::UnitZ(), 0, Vec3(next, 0.25, 0.5));
-  const exact::MeshTruth s = exact::mesh_truth(cube.view(), apart.view());
+  const exact::MeshTruth s = exact::mesh_truth(exact::MeshView(cube), exact::MeshView(apart));
   CHECK_FALSE(s.intersect);
   const mpq_class gap = mpq_class(next) - 1;
   CHECK(as_mpq(s.distance_squared) == gap * gap);
@@ -321,17 +316,17 @@ TEST_CASE("mesh truth: bad meshes are refused, naming the face", "[unit][mesh-tr
   const Mesh good = star_mesh(3, 4, 1.0, rng);
   Mesh bad = good;
   bad.faces[2][1] = 999;
-  CHECK_THROWS_WITH(exact::mesh_truth(good.view(), bad.view()),
+  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(good), exact::MeshView(bad)),
                     Catch::Contains("mesh B: face 2 names vertex 999"));
   bad = good;
   bad.faces[3] = {bad.faces[3][0], bad.faces[3][0], bad.faces[3][1]};
-  CHECK_THROWS_WITH(exact::mesh_truth(bad.view(), good.view()),
+  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(bad), exact::MeshView(good)),
                     Catch::Contains("mesh A: face 3 is degenerate"));
   bad = good;
   bad.vertices[1].x() = std::nan("");
-  CHECK_THROWS_WITH(exact::mesh_truth(bad.view(), good.view()),
+  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(bad), exact::MeshView(good)),
                     Catch::Contains("mesh A: vertex 1 is not finite"));
-  CHECK_THROWS_WITH(exact::mesh_truth(good.view(), Mesh{}.view()),
+  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(good), exact::MeshView(Mesh{})),
                     Catch::Contains("mesh B: has no faces"));
 }
 
@@ -341,7 +336,7 @@ TEST_CASE("mesh truth: cross-check on 2000 pairs", "[.mesh-truth-crosscheck]") {
   for (int k = 0; k < 2000; ++k) {
     const Mesh a = star_mesh(3, 5, 0.5, rng);
     const Mesh b = random_partner(star_mesh(3, 5, 0.5, rng), rng);
-    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
     const BruteAnswer brute = brute_mesh_truth(a, b, rng);
     INFO("pair " << k);
     REQUIRE(t.intersect == brute.intersect);
@@ -368,7 +363,7 @@ TEST_CASE("mesh truth: time on two meshes of 5000 triangles near contact", "[.me
       b_min = std::min(b_min, v.x());
     b = posed(b, 1, Vec3::UnitZ(), 0, Vec3(a_max - b_min + 1e-3, 0, 0));
     const auto t0 = std::chrono::steady_clock::now();
-    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
     ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     evaluations += t.exact_distance_evaluations;
@@ -440,7 +435,7 @@ TEST_CASE("mesh truth: facing grids a few ulps apart, the minimum decided in the
       v.x() += 1 + 10 * std::numeric_limits<double>::epsilon();
       if (inner) v.x() += ulps(rng) * std::numeric_limits<double>::epsilon();
     }
-    const exact::MeshTruth t = exact::mesh_truth(a.view(), b.view());
+    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
     Mesh near_a{a.vertices, {}}, near_b{b.vertices, {}};
     for (const Face& f : a.faces)
       if (a.vertices[f[0]].x() > 0.7 || a.vertices[f[1]].x() > 0.7 || a.vertices[f[2]].x() > 0.7)

@@ -17,6 +17,7 @@
 #include <span>
 
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/geometry/triangle_mesh.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab::exact {
@@ -24,8 +25,10 @@ namespace gjklab::exact {
 /// A closed triangle mesh by reference: vertex coordinates and faces as vertex indices, counter-
 /// clockwise seen from outside.
 struct MeshView {
+  MeshView(std::span<const Vec3> v, std::span<const MeshFace> f) : vertices(v), faces(f) {}
+  MeshView(const TriangleMesh& m) : vertices(m.vertices), faces(m.faces) {}  // NOLINT: a view
   std::span<const Vec3> vertices;
-  std::span<const std::array<std::uint32_t, 3>> faces;
+  std::span<const MeshFace> faces;
 };
 
 /// How the answer was found.
