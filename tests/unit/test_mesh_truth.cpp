@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "../support/brute_force_oracle.hpp"
+#include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/hull_features.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/exact/oracle.hpp"
@@ -29,37 +29,12 @@ namespace {
 using Face = MeshFace;
 using Mesh = TriangleMesh;
 
-/// A star-shaped closed mesh: a UV sphere of `rings` × `segments` whose vertices lie at radius
-/// r(v) ∈ [lo, 1] along their directions (lo = 1: convex). Each triangle stays in the cone of
-/// its corners' rays, so the surface never crosses itself; faces are counter-clockwise seen
-/// from outside.
+/// A star mesh (gjklab::star_mesh) with radii drawn uniformly from [lo, 1] (lo = 1: a convex
+/// UV sphere, up to the rounding of its vertices).
 Mesh star_mesh(int rings, int segments, double lo, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> radius(lo, 1.0);
-  Mesh m;
-  m.vertices.emplace_back(0, 0, lo < 1 ? radius(rng) : 1.0);  // north pole
-  for (int i = 1; i < rings; ++i) {
-    const double theta = M_PI * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * M_PI * j / segments;
-      const double r = lo < 1 ? radius(rng) : 1.0;
-      m.vertices.emplace_back(r * std::sin(theta) * std::cos(phi),
-                              r * std::sin(theta) * std::sin(phi), r * std::cos(theta));
-    }
-  }
-  m.vertices.emplace_back(0, 0, -(lo < 1 ? radius(rng) : 1.0));  // south pole
-  const auto ring = [&](int i, int j) {
-    return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments));
-  };
-  const auto south = static_cast<std::uint32_t>(m.vertices.size() - 1);
-  for (int j = 0; j < segments; ++j) {
-    m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i + 1 < rings; ++i) {
-      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-    m.faces.push_back({ring(rings - 1, j), south, ring(rings - 1, j + 1)});
-  }
-  return m;
+  return gjklab::star_mesh(rings, segments,
+                           [&](const Vec3&) { return lo < 1 ? radius(rng) : 1.0; });
 }
 
 /// The mesh rotated about an axis, scaled and moved (vertices rounded to doubles: the mesh as
@@ -311,6 +286,17 @@ TEST_CASE("mesh truth: touching meshes meet exactly, a gap of one ulp does not c
   CHECK(as_mpq(s.distance_squared) == gap * gap);
 }
 
+TEST_CASE("mesh truth: star meshes are closed meshes, convex or not", "[unit][mesh-truth]") {
+  std::mt19937_64 rng(4);
+  for (const double lo : {1.0, 0.7, 0.2}) {
+    const Mesh m = star_mesh(6, 9, lo, rng);
+    CHECK(m.faces.size() == 2 * 9 * 5);
+    CHECK_NOTHROW(exact::validate_closed_mesh(m, "star"));
+  }
+  CHECK_THROWS_AS(gjklab::star_mesh(1, 5, [](const Vec3&) { return 1.0; }), std::invalid_argument);
+  CHECK_THROWS_AS(gjklab::star_mesh(3, 5, [](const Vec3&) { return 0.0; }), std::invalid_argument);
+}
+
 TEST_CASE("mesh truth: bad meshes are refused, naming the face", "[unit][mesh-truth]") {
   std::mt19937_64 rng(1);
   const Mesh good = star_mesh(3, 4, 1.0, rng);
@@ -344,37 +330,6 @@ TEST_CASE("mesh truth: cross-check on 2000 pairs", "[.mesh-truth-crosscheck]") {
     intersecting += t.intersect;
   }
   WARN("2000 pairs agree; " << intersecting << " intersecting");
-}
-
-TEST_CASE("mesh truth: time on two meshes of 5000 triangles near contact", "[.mesh-truth-timing]") {
-  // Prints the median time of the exact truth (not asserted: speed is for measuring). Two
-  // non-convex star meshes of 5000 triangles each, B placed along x so that the boxes are
-  // 1e-3 apart: near contact, where the culling has the least room.
-  std::mt19937_64 rng(5);
-  std::vector<double> ms;
-  std::uint64_t evaluations = 0, tests = 0;
-  for (int k = 0; k < 21; ++k) {
-    const Mesh a = star_mesh(51, 50, 0.8, rng);
-    Mesh b = posed(star_mesh(51, 50, 0.8, rng), 1, Vec3(1, 2, 3), 0.3 * k, Vec3::Zero());
-    double a_max = -1e300, b_min = 1e300;
-    for (const Vec3& v : a.vertices)
-      a_max = std::max(a_max, v.x());
-    for (const Vec3& v : b.vertices)
-      b_min = std::min(b_min, v.x());
-    b = posed(b, 1, Vec3::UnitZ(), 0, Vec3(a_max - b_min + 1e-3, 0, 0));
-    const auto t0 = std::chrono::steady_clock::now();
-    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
-    ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    evaluations += t.exact_distance_evaluations;
-    tests += t.exact_intersection_tests;
-    CHECK_FALSE(t.intersect);
-  }
-  std::sort(ms.begin(), ms.end());
-  WARN("5000 x 5000 triangles near contact: median "
-       << ms[ms.size() / 2] << " ms (min " << ms[0] << ", max " << ms.back() << "); exact "
-       << "distance evaluations per pair " << evaluations / 21.0
-       << ", exact intersection tests per pair " << tests / 21.0);
 }
 
 namespace {
