@@ -7,11 +7,12 @@
 #include <string>
 #include <variant>
 
+#include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/mesh_io.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/experiment/bench/bench.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 using namespace gjklab;
 
@@ -116,6 +117,22 @@ TEST_CASE(
                         Catch::Contains("(in face 1 of 1)"));
 }
 
+TEST_CASE(
+    "OFF face index 2e75 (fuzzed), or negative: a clear error with the line, not CGAL's "
+    "undefined conversion",
+    "[regression][hostile][fuzz]") {
+  // CGAL's OFF reader reads a face's entries as doubles and converts the indices to an unsigned
+  // integer, undefined for 2e75 (found by fuzzing the closed-mesh reader) and for −3.
+  const std::string dir = std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/";
+  for (const char* name : {"off_face_index_2e75.off", "off_face_index_negative.off"}) {
+    CHECK_THROWS_WITH(exact::read_mesh_vertices(dir + name),
+                      Catch::Contains(name) && Catch::Contains("is not a vertex index"));
+    CHECK_THROWS_WITH(exact::read_closed_mesh(dir + name), Catch::Contains(name));
+  }
+  CHECK_THROWS_WITH(exact::read_mesh_vertices(dir + "off_face_index_2e75.off"),
+                    Catch::Contains("off_face_index_2e75.off:11"));
+}
+
 TEST_CASE("PLY files with garbled binary headers found by fuzzing: clear errors with the line",
           "[regression][hostile][fuzz]") {
   // Each made CGAL's reader allocate or read hundreds of MB (fuzz inputs, first byte dropped).
@@ -167,8 +184,10 @@ TEST_CASE(
   // and the seed tables printed it and its ratio to the measured time.
   const std::string path =
       std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/bench_published_scene_ms_inf.toml";
-  CHECK_THROWS_WITH(experiment::bench::load_bench_config(path),
-                    Catch::Contains("bench_published_scene_ms_inf.toml:12: key 'published.scene_ms.72': must be finite"));
+  CHECK_THROWS_WITH(
+      experiment::bench::load_bench_config(path),
+      Catch::Contains(
+          "bench_published_scene_ms_inf.toml:12: key 'published.scene_ms.72': must be finite"));
 }
 
 TEST_CASE("bench config with an empty list of suites: refused, not a run that measures nothing",
@@ -176,8 +195,9 @@ TEST_CASE("bench config with an empty list of suites: refused, not a run that me
   // `suites = []` was accepted: `gjklab bench` printed its header, measured nothing, exit 0.
   const std::string path =
       std::string(GJKLAB_REGRESSION_DATA_DIR) + "/fuzz/bench_empty_suites.toml";
-  CHECK_THROWS_WITH(experiment::bench::load_bench_config(path),
-                    Catch::Contains("bench_empty_suites.toml:1: key 'suites': must name at least one suite"));
+  CHECK_THROWS_WITH(
+      experiment::bench::load_bench_config(path),
+      Catch::Contains("bench_empty_suites.toml:1: key 'suites': must name at least one suite"));
 }
 
 TEST_CASE(

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -132,6 +133,54 @@ void check_off_header(const std::filesystem::path& file, std::uintmax_t file_siz
   }
 }
 
+/// Whether `token` reads as a vertex index of [0, count): an integral, finite number.
+bool is_vertex_index(const std::string& token, unsigned long long count) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size() && value >= 0 &&
+         value < static_cast<double>(count) && value == std::floor(value);
+}
+
+/// The face lines of a text OFF file, checked before CGAL reads them: CGAL reads a face line's
+/// entries as doubles and converts the vertex indices to an unsigned integer, which is undefined
+/// for a negative, huge or non-finite number (a fuzzed file had 2e75). Every index must be a
+/// vertex index; the header and counts are check_off_header's, binary files CGAL's.
+void check_off_faces(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  enum class Part { keyword, counts, vertices, faces } part = Part::keyword;
+  unsigned long long vertices = 0, read = 0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    auto w = words(line);
+    if (w.empty()) continue;
+    if (part == Part::keyword) {
+      part = Part::counts;
+      if (w[0].size() <= 4 && w[0].ends_with("OFF")) {
+        if (std::find(w.begin(), w.end(), "BINARY") != w.end()) return;
+        w.erase(w.begin());
+        if (w.empty()) continue;
+      }
+    }
+    if (part == Part::counts) {
+      const auto [end, ec] = std::from_chars(w[0].data(), w[0].data() + w[0].size(), vertices);
+      if (ec != std::errc()) return;  // check_off_header refused it already
+      part = vertices == 0 ? Part::faces : Part::vertices;
+    } else if (part == Part::vertices) {
+      if (++read == vertices) part = Part::faces;
+    } else {
+      unsigned long long size = 0;
+      std::from_chars(w[0].data(), w[0].data() + w[0].size(), size);
+      for (std::size_t k = 1; k < w.size() && k <= size; ++k)
+        if (!is_vertex_index(w[k], vertices))
+          throw std::runtime_error(name + ":" + std::to_string(number) + ": face index '" + w[k] +
+                                   "' is not a vertex index (an integer in [0, " +
+                                   std::to_string(vertices) + "))");
+    }
+  }
+}
+
 }  // namespace
 
 bool is_mesh_file(const std::filesystem::path& file) {
@@ -155,7 +204,10 @@ MeshSoup read_mesh_soup(const std::filesystem::path& file, bool keep_faces) {
     check_ply_header(file, file_size);
     return read_ply_mesh(file, keep_faces);
   }
-  if (ext == ".off") check_off_header(file, file_size);
+  if (ext == ".off") {
+    check_off_header(file, file_size);
+    check_off_faces(file);
+  }
   std::vector<Point> points;
   MeshSoup soup;
   bool read = false;
