@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fstream>
+#include <optional>
 #include <ostream>
 
 #include "gjklab/experiment/bench/bench.hpp"
@@ -47,13 +48,25 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
                   "floating-point type of the GJK queries (gjk-bool, the distance variants, "
                   "epa): float, double (default) or long double; peers run in double")
       ->check(CLI::IsMember({"float", "double", "long double"}));
+  CLI::Option* compare =
+      cmd->add_option("--compare", args.compare,
+                      "baseline: an earlier run's --json file; prints each row's ratio to its "
+                      "reference divided by the baseline's (e.g. results/bench/baseline.json)");
+  cmd->add_option("--compare-threshold", args.compare_threshold,
+                  "mark rows whose change exceeds this (default 1.20: 20% slower against the "
+                  "reference than in the baseline)")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->needs(compare);
   return cmd;
 }
 
 int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& err) {
   bench::BenchConfig config;
+  std::optional<bench::BenchBaseline> baseline;
   try {
     if (!args.config.empty()) config = bench::load_bench_config(args.config);
+    // Read before the run, so that a bad baseline does not cost one.
+    if (!args.compare.empty()) baseline = bench::read_baseline(args.compare);
   } catch (const bench::BenchError& e) {
     err << "gjklab bench: " << e.what() << "\n";
     return 2;
@@ -86,7 +99,12 @@ int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& er
     out << "\n  " << k << ": " << v;
   out << "\n  samples: " << config.samples << ", configurations: " << config.configurations
       << ", batch: " << config.batch_seconds * 1e6 << " us, seed: " << config.seed << "\n";
+  if (baseline)
+    report.comparison = bench::compare_to_baseline(
+        report, *baseline,
+        args.compare_threshold > 0 ? args.compare_threshold : bench::kDefaultCompareThreshold);
   bench::print_table(report, out);
+  if (report.comparison) bench::print_comparison(*report.comparison, out);
   auto write = [&](const std::string& path, auto&& writer) {
     std::ofstream file(path);
     if (!file) {

@@ -25,12 +25,15 @@ struct BenchArgs {
   double batch_us = -1;                 ///< < 0: the config's (500 µs)
   long long seed = -1;                  ///< < 0: the config's (1)
   bool quiet = false;
-  std::string precision;  ///< GJK queries' floating-point type; empty: the config's (double)
+  std::string precision;         ///< GJK queries' floating-point type; empty: the config's (double)
+  std::string compare;           ///< baseline JSON to compare the ratios with (empty: none)
+  double compare_threshold = 0;  ///< changes above this are marked; 0: the default (1.20)
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& args);
 
-/// Returns 0, or 2 for a usage error (unknown suite, algorithm or file).
+/// Returns 0, or 2 for a usage error (unknown suite, algorithm or file, or a baseline that is
+/// not a bench report); 0 also when the comparison finds slowdowns, which are for review.
 int run_bench_command(const BenchArgs& args, std::ostream& out, std::ostream& err);
 
 }  // namespace gjklab::cli

@@ -2,17 +2,19 @@
 // (bench_cases.cpp) are made from the seeded random module and the demo shapes; the measurement
 // (bench_measure.cpp) times the registry's benchmark loops on them; the run (bench.cpp) picks
 // the algorithms and references and takes the ratios; the reports (bench_report.cpp) print and
-// write the records; the config file (bench_config.cpp) is read into a BenchConfig.
+// write the records; the config file (bench_config.cpp) is read into a BenchConfig; a baseline
+// (bench_baseline.cpp) is read from an earlier run's JSON and compared (bench_compare.cpp).
 #pragma once
 
 #include <deque>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/bench/bench.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/geometry/shapes.hpp"
 
 namespace gjklab::experiment::bench {
@@ -96,5 +98,10 @@ bool is_peer(std::string_view name);
 /// full-scan row's cost floor (ratios to references are the run's).
 std::vector<BenchRecord> measure_case(const Case& c, const std::vector<Entry>& entries,
                                       const BenchConfig& config, const AlgorithmOptions& options);
+
+// ---- comparison -------------------------------------------------------------------------------
+
+/// The comparison as the "compare" block of the JSON report.
+nlohmann::ordered_json comparison_json(const BenchComparison& comparison);
 
 }  // namespace gjklab::experiment::bench

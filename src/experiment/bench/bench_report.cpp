@@ -92,6 +92,7 @@ void write_json(const BenchReport& report, std::ostream& out) {
   meta["batch_seconds"] = report.config.batch_seconds;
   meta["configurations"] = report.config.configurations;
   meta["seed"] = report.config.seed;
+  meta["precision"] = std::string(to_string(report.config.precision));
   meta["boolean_reference"] = report.boolean_reference;
   meta["distance_reference"] = report.distance_reference;
   meta["notes"] = report.notes;
@@ -129,6 +130,7 @@ void write_json(const BenchReport& report, std::ostream& out) {
   Json doc;
   doc["meta"] = std::move(meta);
   doc["records"] = std::move(records);
+  if (report.comparison) doc["compare"] = comparison_json(*report.comparison);
   out << doc.dump(1) << "\n";
 }
 

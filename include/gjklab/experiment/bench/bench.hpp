@@ -101,12 +101,85 @@ struct BenchRecord {
   bool via_registry = false;                 ///< timed through AlgorithmInfo::run (no direct loop)
 };
 
+// ---- comparison with a baseline (`--compare FILE`) ----------------------------------------
+//
+// Times from different runs are never compared: a row of this run is compared with the same
+// row of an earlier run's JSON through its ratio to its reference, measured within each run.
+// change = ratio now / ratio in the baseline: 1.00 is as fast against the reference as in the
+// baseline, 1.25 is 25 % slower against it.
+
+/// Rows whose change exceeds this are marked, unless another threshold is given. Two runs of the
+/// same build on one shared machine differ by more than 10 % on about one row in eight, by more
+/// than 20 % on about one in twenty-five, the short queries of the seed suite most
+/// (results/bench/README.md): a lower default would mark noise.
+inline constexpr double kDefaultCompareThreshold = 1.20;
+
+/// An earlier run's records, read from its `--json` output: of each record only what a
+/// comparison needs (suite, case_name, algorithm, reference, ratio_to_reference,
+/// ratio_to_floor).
+struct BenchBaseline {
+  std::string path;
+  std::vector<BenchRecord> records;
+  /// The meta block's scalar fields as text (gjklab, cpu, configurations, seed, …), for the
+  /// header of the comparison and its notes on inputs that differ.
+  std::map<std::string, std::string> meta;
+};
+
+/// A record of this run and the baseline's record of the same suite, case, algorithm and
+/// reference.
+struct BenchComparisonRow {
+  std::string suite, case_name, algorithm, reference;
+  double ratio_now = 0, ratio_baseline = 0;  ///< ratio_to_reference
+  /// ratio_now / ratio_baseline; empty on the reference's own row, whose ratio is 1 by
+  /// definition (its floor change is then the only sign of the reference itself slowing).
+  std::optional<double> change;
+  std::optional<double> floor_now, floor_baseline, floor_change;  ///< ratio_to_floor, both sides
+  bool over_threshold = false;                                    ///< change > threshold
+};
+
+/// A record that could not be compared, and why ("only in this run", "only in the baseline",
+/// a different reference, no ratio to its reference).
+struct BenchUnmatched {
+  std::string suite, case_name, algorithm, why;
+};
+
+/// One algorithm's rows together: a slowdown of the algorithm itself moves most of its rows,
+/// where the noise of a run moves single rows either way.
+struct BenchAlgorithmChange {
+  std::string algorithm;
+  int rows = 0;
+  std::optional<double> median_change;  ///< empty for the reference (no change of its own)
+  std::optional<double> median_floor_change;
+  int over_threshold = 0;
+};
+
+struct BenchComparison {
+  std::string baseline_path;
+  std::map<std::string, std::string> baseline_meta;
+  double threshold = kDefaultCompareThreshold;
+  /// Largest change first; the references' own rows last, largest floor change first.
+  std::vector<BenchComparisonRow> rows;
+  std::vector<BenchUnmatched> unmatched;
+  /// Baseline records of a case or an algorithm this run did not measure at all (another
+  /// --suite, --cases or --algorithms): counted, not listed, so that a partial run is not
+  /// drowned in them; the algorithms are named.
+  int baseline_records_not_run = 0;
+  std::vector<std::string> baseline_algorithms_not_run;
+  std::optional<double> median_change, median_floor_change;
+  int over_threshold = 0;
+  /// Per algorithm, the largest median change first, the reference last.
+  std::vector<BenchAlgorithmChange> by_algorithm;
+  std::vector<std::string> notes;  ///< inputs that differ from the baseline's
+};
+
 struct BenchReport {
   std::vector<BenchRecord> records;
   std::vector<std::string> notes;  ///< what the reader must know (reference choices, …)
   std::string boolean_reference;
   std::string distance_reference;
   BenchConfig config;
+  /// Set when the run is compared with a baseline; written into the JSON as "compare".
+  std::optional<BenchComparison> comparison;
 };
 
 /// Thrown for an unknown suite or algorithm name or an invalid setting (message says which).
@@ -145,10 +218,21 @@ BenchReport run_bench(const BenchConfig& config, std::ostream* progress = nullpt
 /// The readable table, one block per suite.
 void print_table(const BenchReport& report, std::ostream& out);
 /// {"meta": {...}, "records": [{suite, case, algorithm, ns_median, ns_p10, ns_p90,
-/// iterations_mean, ratio_to_reference, …}, …]}
+/// iterations_mean, ratio_to_reference, …}, …]}, and "compare": {...} when the report has a
+/// comparison.
 void write_json(const BenchReport& report, std::ostream& out);
 /// Markdown with the seed and scene suites beside the published figures of the config.
 void write_seed_tables_markdown(const BenchReport& report, std::ostream& out);
+
+/// Reads the records of a `--json` output as a baseline. Throws BenchError naming the file and
+/// the problem (unreadable, not JSON, not a bench report, a record without a field it needs).
+BenchBaseline read_baseline(const std::string& path);
+/// Compares this run's records with the baseline's (see BenchComparison); rows whose change
+/// exceeds `threshold` are marked.
+BenchComparison compare_to_baseline(const BenchReport& report, const BenchBaseline& baseline,
+                                    double threshold = kDefaultCompareThreshold);
+/// The comparison's table, the records not compared and a summary line.
+void print_comparison(const BenchComparison& comparison, std::ostream& out);
 
 /// Reads a bench config file (TOML; format in experiments/README.md). Throws BenchError.
 BenchConfig load_bench_config(const std::string& path);
