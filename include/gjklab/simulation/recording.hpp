@@ -18,8 +18,7 @@ void record_frame(const scene::World& w, const scene::StepStats& st, double body
 /// The dynamic bodies' poses, velocities and touching state at `frame`.
 void record_poses(const scene::World& w, std::int64_t frame, experiment::ScenePoseRows& rows);
 /// The world's contacts after the step of `frame`.
-void record_contacts(const scene::World& w, std::int64_t frame,
-                     experiment::SceneContactRows& rows);
+void record_contacts(const scene::World& w, std::int64_t frame, experiment::SceneContactRows& rows);
 /// The step's queries (logged by the world) with the poses the bodies had before it.
 void record_queries(const std::vector<Pose>& before, const std::vector<scene::QueryRecord>& log,
                     std::int64_t frame, experiment::SceneQueryRows& rows);

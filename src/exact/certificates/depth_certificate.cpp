@@ -21,10 +21,10 @@
 #include <utility>
 #include <vector>
 
-#include "gjklab/exact/certificate.hpp"
 #include "exact/arithmetic/gmp_support.hpp"
-#include "exact/hull/hull.hpp"
 #include "exact/arithmetic/integer_geometry.hpp"
+#include "exact/hull/hull.hpp"
+#include "gjklab/exact/certificate.hpp"
 
 namespace gjklab::exact {
 

@@ -18,12 +18,12 @@
 #include <span>
 #include <vector>
 
-#include "exact/certificates/filtered_distance.hpp"
-#include "gjklab/exact/certificate.hpp"
 #include "exact/arithmetic/gmp_support.hpp"
 #include "exact/arithmetic/integer_geometry.hpp"
 #include "exact/arithmetic/wide_int.hpp"
 #include "exact/arithmetic/wide_rounding.hpp"
+#include "exact/certificates/filtered_distance.hpp"
+#include "gjklab/exact/certificate.hpp"
 
 namespace gjklab::exact {
 

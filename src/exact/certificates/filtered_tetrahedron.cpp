@@ -24,9 +24,9 @@
 #include <limits>
 #include <optional>
 
+#include "exact/arithmetic/wide_rounding.hpp"
 #include "exact/certificates/filtered_distance.hpp"
 #include "gjklab/geometry/double_word.hpp"
-#include "exact/arithmetic/wide_rounding.hpp"
 
 namespace gjklab::exact::detail {
 

@@ -10,9 +10,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "gjklab/exact/certificate.hpp"
 #include "exact/arithmetic/gmp_support.hpp"
 #include "exact/arithmetic/mpfr_support.hpp"
+#include "gjklab/exact/certificate.hpp"
 
 namespace gjklab::exact {
 

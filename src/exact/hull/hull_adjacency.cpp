@@ -10,9 +10,9 @@
 #include <numeric>
 #include <string>
 
+#include "exact/hull/hull.hpp"
 #include "gjklab/exact/hull_adjacency.hpp"
 #include "gjklab/geometry/polytope.hpp"
-#include "exact/hull/hull.hpp"
 
 namespace gjklab::exact {
 

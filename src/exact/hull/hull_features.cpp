@@ -16,8 +16,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "gjklab/geometry/polytope.hpp"
 #include "exact/hull/hull.hpp"
+#include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::exact {
 

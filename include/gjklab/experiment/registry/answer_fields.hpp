@@ -22,7 +22,7 @@ using AnswerFields = std::vector<std::pair<std::string, AnswerValue>>;
 /// normal, witnesses, the proven bracket, iterations, support calls, termination, and the
 /// exact answer's rationals and methods when the algorithm is exact (`core_` keys for swept
 /// shapes: the rationals are the cores').
-AnswerFields answer_fields(std::string_view algorithm, const Outcome& o,
-                           ScalarPrecision precision, double radius_a, double radius_b);
+AnswerFields answer_fields(std::string_view algorithm, const Outcome& o, ScalarPrecision precision,
+                           double radius_a, double radius_b);
 
 }  // namespace gjklab::experiment
