@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "../support/brute_force_oracle.hpp"
@@ -172,19 +173,26 @@ mpq_class triangle_distance2(const Tri& x, const Tri& y) {
   return best;
 }
 
-/// All pairs of triangles and the two containment tests.
-BruteAnswer brute_mesh_truth(const Mesh& a, const Mesh& b, std::mt19937_64& rng) {
-  std::vector<Tri> ta, tb;
-  for (const Face& f : a.faces)
-    ta.push_back(exact_triangle(a, f));
-  for (const Face& f : b.faces)
+/// The least exact squared distance over every pair of the given faces of a and b.
+mpq_class brute_min_distance2(const Mesh& a, std::span<const Face> faces_a, const Mesh& b,
+                              std::span<const Face> faces_b) {
+  std::vector<Tri> tb;
+  for (const Face& f : faces_b)
     tb.push_back(exact_triangle(b, f));
   mpq_class best = -1;
-  for (const Tri& x : ta)
+  for (const Face& fa : faces_a) {
+    const Tri x = exact_triangle(a, fa);
     for (const Tri& y : tb) {
       const mpq_class d2 = triangle_distance2(x, y);
       if (best < 0 || d2 < best) best = d2;
     }
+  }
+  return best;
+}
+
+/// All pairs of triangles and the two containment tests.
+BruteAnswer brute_mesh_truth(const Mesh& a, const Mesh& b, std::mt19937_64& rng) {
+  const mpq_class best = brute_min_distance2(a, a.faces, b, b.faces);
   if (best == 0) return {true, 0};
   if (brute_inside(a.vertices[a.faces[0][0]], b, rng) ||
       brute_inside(b.vertices[b.faces[0][0]], a, rng))
@@ -207,25 +215,37 @@ Mesh random_partner(const Mesh& m, std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE("mesh truth: non-convex star meshes agree with the brute force over all triangle pairs",
-          "[unit][mesh-truth]") {
-  std::mt19937_64 rng(20261127);
+/// Answers counted by kind over a run of random pairs.
+struct Tally {
   int intersecting = 0, separated = 0;
-  for (int k = 0; k < 16; ++k) {
-    const Mesh a = star_mesh(4, 6, 0.55, rng);
-    const Mesh b = random_partner(star_mesh(4, 5, 0.55, rng), rng);
-    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
+};
+
+/// Random pairs of star meshes (rings × segments, radii in [lo, 1]) judged by mesh_truth and by
+/// the brute force, which must agree exactly.
+Tally cross_check(int pairs, int rings, int segments, double lo, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Tally tally;
+  for (int k = 0; k < pairs; ++k) {
+    const Mesh a = star_mesh(rings, segments, lo, rng);
+    const Mesh b = random_partner(star_mesh(rings, segments - 1, lo, rng), rng);
+    const exact::MeshTruth t = exact::mesh_truth(a, b);
     const BruteAnswer brute = brute_mesh_truth(a, b, rng);
     INFO("pair " << k);
     REQUIRE(t.intersect == brute.intersect);
     CHECK(as_mpq(t.distance_squared) == brute.distance2);
     CHECK(t.distance == Approx(std::sqrt(brute.distance2.get_d())).epsilon(1e-15));
-    intersecting += t.contact == exact::MeshContact::triangles_meet;
-    separated += !t.intersect;
+    tally.intersecting += t.contact == exact::MeshContact::triangles_meet;
+    tally.separated += !t.intersect;
   }
+  return tally;
+}
+
+TEST_CASE("mesh truth: non-convex star meshes agree with the brute force over all triangle pairs",
+          "[unit][mesh-truth]") {
+  const Tally tally = cross_check(16, 4, 6, 0.55, 20261127);
   // The family reaches triangles that meet and solids apart (containment: the next test).
-  CHECK(intersecting > 0);
-  CHECK(separated > 0);
+  CHECK(tally.intersecting > 0);
+  CHECK(tally.separated > 0);
 }
 
 TEST_CASE("mesh truth: a small star inside a star is contained, either way round",
@@ -233,19 +253,18 @@ TEST_CASE("mesh truth: a small star inside a star is contained, either way round
   std::mt19937_64 rng(3);
   const Mesh outer = star_mesh(5, 7, 0.6, rng);
   const Mesh inner = posed(star_mesh(4, 5, 0.6, rng), 0.3, Vec3(1, 1, 0), 0.7, Vec3(0.05, 0, 0));
-  const exact::MeshTruth ab = exact::mesh_truth(exact::MeshView(outer), exact::MeshView(inner));
+  const exact::MeshTruth ab = exact::mesh_truth(outer, inner);
   CHECK(ab.intersect);
   CHECK(ab.contact == exact::MeshContact::b_inside_a);
-  const exact::MeshTruth ba = exact::mesh_truth(exact::MeshView(inner), exact::MeshView(outer));
+  const exact::MeshTruth ba = exact::mesh_truth(inner, outer);
   CHECK(ba.intersect);
   CHECK(ba.contact == exact::MeshContact::a_inside_b);
   CHECK(brute_mesh_truth(outer, inner, rng).intersect);
   // Moved out through the outer surface: the triangles meet; moved far: separated.
   const Mesh crossing = posed(inner, 1, Vec3::UnitZ(), 0, Vec3(0.55, 0, 0));
-  CHECK(exact::mesh_truth(exact::MeshView(outer), exact::MeshView(crossing)).contact ==
-        exact::MeshContact::triangles_meet);
+  CHECK(exact::mesh_truth(outer, crossing).contact == exact::MeshContact::triangles_meet);
   const Mesh far = posed(inner, 1, Vec3::UnitZ(), 0, Vec3(3, 0, 0));
-  CHECK_FALSE(exact::mesh_truth(exact::MeshView(outer), exact::MeshView(far)).intersect);
+  CHECK_FALSE(exact::mesh_truth(outer, far).intersect);
 }
 
 TEST_CASE("mesh truth: on convex meshes it equals the convex oracle on the vertex clouds",
@@ -254,7 +273,7 @@ TEST_CASE("mesh truth: on convex meshes it equals the convex oracle on the verte
   for (int k = 0; k < 30; ++k) {
     const Mesh a = hull_mesh(random_partner(star_mesh(5, 8, 0.6, rng), rng).vertices);
     const Mesh b = hull_mesh(random_partner(star_mesh(4, 7, 0.6, rng), rng).vertices);
-    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
+    const exact::MeshTruth t = exact::mesh_truth(a, b);
     const exact::OracleAnswer o = exact::solve(a.vertices, b.vertices, {});
     INFO("pair " << k << ": mesh " << t.distance_squared.numerator() << "/"
                  << t.distance_squared.denominator() << " (" << t.distance << "), oracle "
@@ -275,12 +294,12 @@ TEST_CASE("mesh truth: touching meshes meet exactly, a gap of one ulp does not c
   cube.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                 {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
   const Mesh touching = posed(cube, 1, Vec3::UnitZ(), 0, Vec3(1, 0.25, 0.5));
-  const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(cube), exact::MeshView(touching));
+  const exact::MeshTruth t = exact::mesh_truth(cube, touching);
   CHECK(t.intersect);
   CHECK(t.contact == exact::MeshContact::triangles_meet);
   const double next = std::nextafter(1.0, 2.0);
   const Mesh apart = posed(cube, 1, Vec3::UnitZ(), 0, Vec3(next, 0.25, 0.5));
-  const exact::MeshTruth s = exact::mesh_truth(exact::MeshView(cube), exact::MeshView(apart));
+  const exact::MeshTruth s = exact::mesh_truth(cube, apart);
   CHECK_FALSE(s.intersect);
   const mpq_class gap = mpq_class(next) - 1;
   CHECK(as_mpq(s.distance_squared) == gap * gap);
@@ -302,34 +321,23 @@ TEST_CASE("mesh truth: bad meshes are refused, naming the face", "[unit][mesh-tr
   const Mesh good = star_mesh(3, 4, 1.0, rng);
   Mesh bad = good;
   bad.faces[2][1] = 999;
-  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(good), exact::MeshView(bad)),
+  CHECK_THROWS_WITH(exact::mesh_truth(good, bad),
                     Catch::Contains("mesh B: face 2 names vertex 999"));
   bad = good;
   bad.faces[3] = {bad.faces[3][0], bad.faces[3][0], bad.faces[3][1]};
-  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(bad), exact::MeshView(good)),
-                    Catch::Contains("mesh A: face 3 is degenerate"));
+  CHECK_THROWS_WITH(exact::mesh_truth(bad, good), Catch::Contains("mesh A: face 3 is degenerate"));
   bad = good;
   bad.vertices[1].x() = std::nan("");
-  CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(bad), exact::MeshView(good)),
+  CHECK_THROWS_WITH(exact::mesh_truth(bad, good),
                     Catch::Contains("mesh A: vertex 1 is not finite"));
   CHECK_THROWS_WITH(exact::mesh_truth(exact::MeshView(good), exact::MeshView(Mesh{})),
                     Catch::Contains("mesh B: has no faces"));
 }
 
 TEST_CASE("mesh truth: cross-check on 2000 pairs", "[.mesh-truth-crosscheck]") {
-  std::mt19937_64 rng(2026);
-  int intersecting = 0;
-  for (int k = 0; k < 2000; ++k) {
-    const Mesh a = star_mesh(3, 5, 0.5, rng);
-    const Mesh b = random_partner(star_mesh(3, 5, 0.5, rng), rng);
-    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
-    const BruteAnswer brute = brute_mesh_truth(a, b, rng);
-    INFO("pair " << k);
-    REQUIRE(t.intersect == brute.intersect);
-    REQUIRE(as_mpq(t.distance_squared) == brute.distance2);
-    intersecting += t.intersect;
-  }
-  WARN("2000 pairs agree; " << intersecting << " intersecting");
+  const Tally tally = cross_check(2000, 3, 6, 0.5, 2026);
+  WARN("2000 pairs agree; " << tally.intersecting << " with triangles that meet, "
+                            << tally.separated << " apart");
 }
 
 namespace {
@@ -390,20 +398,17 @@ TEST_CASE("mesh truth: facing grids a few ulps apart, the minimum decided in the
       v.x() += 1 + 10 * std::numeric_limits<double>::epsilon();
       if (inner) v.x() += ulps(rng) * std::numeric_limits<double>::epsilon();
     }
-    const exact::MeshTruth t = exact::mesh_truth(exact::MeshView(a), exact::MeshView(b));
-    Mesh near_a{a.vertices, {}}, near_b{b.vertices, {}};
-    for (const Face& f : a.faces)
-      if (a.vertices[f[0]].x() > 0.7 || a.vertices[f[1]].x() > 0.7 || a.vertices[f[2]].x() > 0.7)
-        near_a.faces.push_back(f);
-    for (const Face& f : b.faces)
-      if (b.vertices[f[0]].x() < 1.3 || b.vertices[f[1]].x() < 1.3 || b.vertices[f[2]].x() < 1.3)
-        near_b.faces.push_back(f);
-    mpq_class best = -1;
-    for (const Face& fa : near_a.faces)
-      for (const Face& fb : near_b.faces) {
-        const mpq_class d2 = triangle_distance2(exact_triangle(a, fa), exact_triangle(b, fb));
-        if (best < 0 || d2 < best) best = d2;
-      }
+    const exact::MeshTruth t = exact::mesh_truth(a, b);
+    auto near = [](const Mesh& m, auto facing) {
+      std::vector<Face> faces;
+      for (const Face& f : m.faces)
+        if (facing(m.vertices[f[0]]) || facing(m.vertices[f[1]]) || facing(m.vertices[f[2]]))
+          faces.push_back(f);
+      return faces;
+    };
+    const mpq_class best =
+        brute_min_distance2(a, near(a, [](const Vec3& v) { return v.x() > 0.7; }), b,
+                            near(b, [](const Vec3& v) { return v.x() < 1.3; }));
     INFO("trial " << trial << ": exact evaluations " << t.exact_distance_evaluations);
     CHECK(t.intersect == (best == 0));
     CHECK(as_mpq(t.distance_squared) == best);
