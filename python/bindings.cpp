@@ -55,12 +55,6 @@ py::object vector_or_none(const std::optional<Vec3>& v) {
   return out;
 }
 
-py::object fraction(const exact::Rational& r) {
-  static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
-  // Decimal strings of any length: Python's int parses them exactly.
-  return Fraction(py::int_(py::str(r.numerator())), py::int_(py::str(r.denominator())));
-}
-
 /// One algorithm's answer, with the JSON names of `gjklab query`.
 struct QueryResult {
   std::string algorithm;

@@ -52,12 +52,13 @@ CloudArray cloud_array(const py::handle& object, const char* name) {
   return {std::move(array), rows};
 }
 
-namespace {
+py::object fraction(const exact::Rational& r) {
+  static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
+  // Decimal strings of any length: Python's int parses them exactly.
+  return Fraction(py::int_(py::str(r.numerator())), py::int_(py::str(r.denominator())));
+}
 
-/// The checks of `gjklab query --cases` on an array's points, for the message of a cloud the
-/// polytope refused (a NaN or infinite coordinate): the points copied, then check_case_cloud.
-[[noreturn]] void refuse(const CloudArray& cloud, const char* name,
-                         const InvalidGeometry& refused) {
+std::vector<Vec3> points_of(const CloudArray& cloud) {
   std::vector<Vec3> points(cloud.rows.count);
   const auto* bytes = static_cast<const char*>(cloud.rows.data);
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -66,7 +67,16 @@ namespace {
                   bytes + static_cast<std::ptrdiff_t>(i) * cloud.rows.row_stride +
                       k * cloud.rows.column_stride,
                   sizeof(double));
-  experiment::check_case_cloud(points, name);
+  return points;
+}
+
+namespace {
+
+/// The checks of `gjklab query --cases` on an array's points, for the message of a cloud the
+/// polytope refused (a NaN or infinite coordinate): the points copied, then check_case_cloud.
+[[noreturn]] void refuse(const CloudArray& cloud, const char* name,
+                         const InvalidGeometry& refused) {
+  experiment::check_case_cloud(points_of(cloud), name);
   throw std::invalid_argument(std::string("cloud ") + name + ": " + refused.what());
 }
 

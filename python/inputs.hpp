@@ -8,6 +8,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
@@ -30,6 +31,12 @@ struct CloudArray {
 
 /// The array `object` as a cloud named `name` in messages ("a" or "b"): float64, n×3, not empty.
 CloudArray cloud_array(const py::handle& object, const char* name);
+
+/// An exact rational as a fractions.Fraction (for the answers of the exact functions).
+py::object fraction(const exact::Rational& r);
+
+/// The array's points, copied (any strides).
+std::vector<Vec3> points_of(const CloudArray& cloud);
 
 /// The polytope of a checked array, in `polytope` (built, or its storage reused), with the
 /// messages of `gjklab query --cases`.

@@ -62,15 +62,8 @@ TriangleMesh mesh_of(const py::handle& object, const char* side) {
     const py::sequence pair = py::reinterpret_borrow<py::sequence>(object);
     if (pair.size() != 2)
       throw py::value_error(name + ": expected a mesh file path or (vertices, faces)");
-    const CloudArray cloud = cloud_array(pair[0], side);
     TriangleMesh mesh;
-    mesh.vertices.resize(cloud.rows.count);
-    const auto* base = static_cast<const char*>(cloud.rows.data);
-    for (std::size_t i = 0; i < cloud.rows.count; ++i)
-      for (int k = 0; k < 3; ++k)
-        mesh.vertices[i][k] = *reinterpret_cast<const double*>(
-            base + static_cast<std::ptrdiff_t>(i) * cloud.rows.row_stride +
-            k * cloud.rows.column_stride);
+    mesh.vertices = points_of(cloud_array(pair[0], side));
     mesh.faces = faces_of(pair[1], name);
     exact::validate_closed_mesh(mesh, name);
     return mesh;
@@ -80,13 +73,11 @@ TriangleMesh mesh_of(const py::handle& object, const char* side) {
 }
 
 py::dict truth_dict(const exact::MeshTruth& t) {
-  static const py::object Fraction = py::module_::import("fractions").attr("Fraction");
   py::dict d;
   d["intersect"] = t.intersect;
   d["contact"] = contact_name(t.contact);
   d["distance"] = t.distance;
-  d["distance_squared"] = Fraction(py::int_(py::str(t.distance_squared.numerator())),
-                                   py::int_(py::str(t.distance_squared.denominator())));
+  d["distance_squared"] = fraction(t.distance_squared);
   d["face_a"] = t.face_a;
   d["face_b"] = t.face_b;
   d["exact_intersection_tests"] = t.exact_intersection_tests;
