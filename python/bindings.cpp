@@ -46,15 +46,6 @@ using experiment::Outcome;
 
 // ---- answers out ---------------------------------------------------------------------------
 
-py::object vector_or_none(const std::optional<Vec3>& v) {
-  if (!v) return py::none();
-  py::array_t<double> out(3);
-  auto w = out.mutable_unchecked<1>();
-  for (int k = 0; k < 3; ++k)
-    w(k) = (*v)[k];
-  return out;
-}
-
 /// One algorithm's answer, with the JSON names of `gjklab query`.
 struct QueryResult {
   std::string algorithm;
@@ -68,20 +59,10 @@ struct ExactResult {
 };
 
 /// The fields of `gjklab query`'s JSON line of one answer (experiment::answer_fields), as a
-/// dict; points and directions as tuples.
+/// dict (fields_dict).
 py::dict query_dict(const QueryResult& r) {
-  py::dict d;
-  for (const auto& [key, value] : experiment::answer_fields(
-           r.algorithm, r.outcome, ScalarPrecision::double_float, r.radius_a, r.radius_b))
-    std::visit(
-        [&](const auto& x) {
-          if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Vec3>)
-            d[py::str(key)] = vector_or_none(std::optional<Vec3>(x));
-          else
-            d[py::str(key)] = x;
-        },
-        value);
-  return d;
+  return fields_dict(experiment::answer_fields(
+      r.algorithm, r.outcome, ScalarPrecision::double_float, r.radius_a, r.radius_b));
 }
 
 // ---- the calls -----------------------------------------------------------------------------

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "gjklab/experiment/cases/cloud_io.hpp"
@@ -165,6 +167,29 @@ AlgorithmSpec spec_from(const std::string& algorithm, const py::kwargs& options)
     }
   }
   return spec;
+}
+
+py::object vector_or_none(const std::optional<Vec3>& v) {
+  if (!v) return py::none();
+  py::array_t<double> out(3);
+  auto w = out.mutable_unchecked<1>();
+  for (int k = 0; k < 3; ++k)
+    w(k) = (*v)[k];
+  return out;
+}
+
+py::dict fields_dict(const experiment::AnswerFields& fields) {
+  py::dict d;
+  for (const auto& [key, value] : fields)
+    std::visit(
+        [&](const auto& x) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Vec3>)
+            d[py::str(key)] = vector_or_none(std::optional<Vec3>(x));
+          else
+            d[py::str(key)] = x;
+        },
+        value);
+  return d;
 }
 
 }  // namespace gjklab::python

@@ -12,6 +12,7 @@
 
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/registry/answer_fields.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
 namespace gjklab::python {
@@ -48,7 +49,13 @@ const experiment::AlgorithmInfo& algorithm_named(const std::string& name);
 /// The algorithm and its options from keyword arguments, checked as an experiment file's.
 experiment::AlgorithmSpec spec_from(const std::string& algorithm, const py::kwargs& options);
 
-/// gjklab.read_closed_mesh and gjklab.exact_mesh (meshes.cpp).
+/// A point or direction as a float64 array of 3, or None.
+py::object vector_or_none(const std::optional<Vec3>& v);
+/// An answer's fields (`gjklab query`'s JSON line) as a dict, in their order; points and
+/// directions as float64 arrays of 3.
+py::dict fields_dict(const experiment::AnswerFields& fields);
+/// gjklab.read_closed_mesh, gjklab.exact_mesh, gjklab.decompose and gjklab.query_mesh
+/// (meshes.cpp).
 void def_meshes(py::module_& m);
 
 }  // namespace gjklab::python

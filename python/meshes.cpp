@@ -9,25 +9,13 @@
 
 #include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/mesh_query.hpp"
 #include "inputs.hpp"
 
 namespace gjklab::python {
 
 namespace {
-
-const char* contact_name(exact::MeshContact c) {
-  switch (c) {
-    case exact::MeshContact::separated:
-      return "separated";
-    case exact::MeshContact::triangles_meet:
-      return "triangles_meet";
-    case exact::MeshContact::a_inside_b:
-      return "a_inside_b";
-    case exact::MeshContact::b_inside_a:
-      return "b_inside_a";
-  }
-  return "separated";
-}
 
 /// Faces from an m×3 integer array (any integer dtype; values checked against uint32).
 std::vector<MeshFace> faces_of(const py::handle& object, const std::string& name) {
@@ -75,7 +63,7 @@ TriangleMesh mesh_of(const py::handle& object, const char* side) {
 py::dict truth_dict(const exact::MeshTruth& t) {
   py::dict d;
   d["intersect"] = t.intersect;
-  d["contact"] = contact_name(t.contact);
+  d["contact"] = std::string(to_string(t.contact));
   d["distance"] = t.distance;
   d["distance_squared"] = fraction(t.distance_squared);
   d["face_a"] = t.face_a;
@@ -123,6 +111,65 @@ oriented, self-intersecting, inverted or degenerate.)");
 'a_inside_b', 'b_inside_a'), distance_squared (fractions.Fraction, exact), distance (correctly
 rounded), face_a and face_b (the triangles that meet or attain the distance; -1 for a
 containment), and the exact evaluations the answer took.)");
+  m.def(
+      "decompose",
+      [](const py::handle& mesh, const std::string& method) {
+        const TriangleMesh closed = mesh_of(mesh, "a");
+        experiment::Decomposition d;
+        try {
+          d = experiment::decomposition_named(method).decompose(closed, "mesh", {});
+        } catch (const std::exception& e) {
+          throw py::value_error(e.what());
+        }
+        py::list pieces;
+        for (const std::vector<Vec3>& piece : d.pieces) {
+          py::array_t<double> corners({static_cast<py::ssize_t>(piece.size()), py::ssize_t{3}});
+          auto c = corners.mutable_unchecked<2>();
+          for (py::ssize_t i = 0; i < c.shape(0); ++i)
+            for (int k = 0; k < 3; ++k)
+              c(i, k) = piece[static_cast<std::size_t>(i)][k];
+          pieces.append(corners);
+        }
+        py::dict out;
+        out["method"] = d.method;
+        out["pieces"] = pieces;
+        out["proven"] = d.proven;
+        out["max_rounding"] = d.max_rounding;
+        return out;
+      },
+      py::arg("mesh"), py::arg("method") = "exact",
+      R"(The convex pieces of a closed mesh (a file path or (vertices, faces)) by a named
+decomposition: 'hull' (one piece, the convex hull), 'exact' (CGAL's decomposition, its union
+proven equal to the solid; at most 2 000 faces) or 'approximate' (Bullet's HACD with its default
+parameters, when built). Returns a dict: method, pieces (a list of k×3 float64 arrays, each
+piece the convex hull of its rows), proven (the union is proven to be the solid) and
+max_rounding (how far rounding the exact pieces' corners to doubles moved them, length units).
+Raises ValueError when the mesh is bad or the decomposition fails, saying why.)");
+  m.def(
+      "query_mesh",
+      [](const py::handle& a, const py::handle& b, const std::string& algorithm,
+         const std::string& decomposition, const py::kwargs& options) {
+        const experiment::AlgorithmSpec spec = spec_from(algorithm, options);
+        const experiment::AlgorithmInfo& info = algorithm_named(spec.name);
+        experiment::MeshSide sa{mesh_of(a, "a"), std::nullopt, {}};
+        experiment::MeshSide sb{mesh_of(b, "b"), std::nullopt, {}};
+        try {
+          const auto& chosen = experiment::decomposition_named(decomposition);
+          if (info.kind != experiment::AnswerKind::exact) {
+            experiment::decompose_side(sa, chosen, "mesh a", {});
+            experiment::decompose_side(sb, chosen, "mesh b", {});
+          }
+          return fields_dict(experiment::mesh_answer_fields(info, sa, sb, spec.options));
+        } catch (const std::exception& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("a"), py::arg("b"), py::arg("algorithm") = "gjk-johnson",
+      py::arg("decomposition") = "hull",
+      R"(One algorithm's answer for two closed meshes (file paths or (vertices, faces)), as
+`gjklab query` prints it: 'exact' answers the solids (mesh truth); any other algorithm runs over
+the pairs of pieces of the named decomposition and its answer says which, with pieces_a,
+pieces_b, piece_pairs and piece_pairs_tested. Keyword arguments are the algorithm's options.)");
 }
 
 }  // namespace gjklab::python

@@ -1,4 +1,5 @@
 #include "gjklab/query.hpp"
+#include "gjklab/query_table.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -8,12 +9,18 @@
 #include <istream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
+#include <stdexcept>
 #include <thread>
 #include <type_traits>
 #include <variant>
 
+#include "gjklab/exact/closed_mesh.hpp"
+#include "gjklab/exact/hull_features.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/mesh_query.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/registry/answer_fields.hpp"
 
@@ -39,15 +46,20 @@ Json json_of(const experiment::AnswerValue& v) {
       v);
 }
 
+/// The JSON line of one answer for one case: its id, then the fields.
+std::string fields_line(const std::string& id, const experiment::AnswerFields& fields) {
+  Json j;
+  j["id"] = id;
+  for (const auto& [key, value] : fields)
+    j[key] = json_of(value);
+  return experiment::json_line(j);
+}
+
 /// The JSON line of one algorithm's answer for one case: its id, then answer_fields.
 std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
                         const experiment::Outcome& o, ScalarPrecision precision) {
-  Json j;
-  j["id"] = c.id;
-  for (const auto& [key, value] :
-       experiment::answer_fields(algorithm.name, o, precision, c.radius_a, c.radius_b))
-    j[key] = json_of(value);
-  return experiment::json_line(j);
+  return fields_line(
+      c.id, experiment::answer_fields(algorithm.name, o, precision, c.radius_a, c.radius_b));
 }
 
 std::string error_line(const std::string& id, const std::string& problem,
@@ -57,6 +69,51 @@ std::string error_line(const std::string& id, const std::string& problem,
   if (algorithm) j["algorithm"] = algorithm->name;
   j["error"] = problem;
   return experiment::json_line(j);
+}
+
+/// A side of a non-convex case: its mesh, or the boundary of a point cloud's hull.
+experiment::MeshSide mesh_side(const std::optional<TriangleMesh>& mesh,
+                               const std::vector<Vec3>& cloud) {
+  return {mesh ? *mesh : exact::hull_mesh(cloud), std::nullopt, {}};
+}
+
+/// Every selected algorithm on a case with a mesh side: `exact` answers the solids, the others
+/// the pieces of the decomposition (one error line each when a side cannot be decomposed).
+std::vector<std::string> answer_mesh_case(const PointCase& c,
+                                          const std::vector<const AlgorithmInfo*>& selected,
+                                          const experiment::DecompositionInfo& decomposition,
+                                          const experiment::AlgorithmOptions& options) {
+  std::vector<std::string> lines;
+  std::optional<experiment::MeshSide> a, b;
+  try {
+    a = mesh_side(c.mesh_a, c.a);
+    b = mesh_side(c.mesh_b, c.b);
+  } catch (const std::exception& e) {
+    return {error_line(c.id, std::string(a ? "side b: " : "side a: ") + e.what())};
+  }
+  const bool convex = std::any_of(selected.begin(), selected.end(), [](const AlgorithmInfo* x) {
+    return x->kind != experiment::AnswerKind::exact;
+  });
+  std::string not_decomposed;
+  try {
+    if (convex) {
+      experiment::decompose_side(*a, decomposition, "case '" + c.id + "' side a", {});
+      experiment::decompose_side(*b, decomposition, "case '" + c.id + "' side b", {});
+    }
+  } catch (const std::exception& e) {
+    not_decomposed = e.what();
+  }
+  for (const AlgorithmInfo* algorithm : selected) {
+    try {
+      if (algorithm->kind != experiment::AnswerKind::exact && !not_decomposed.empty())
+        throw std::runtime_error(not_decomposed);
+      lines.push_back(
+          fields_line(c.id, experiment::mesh_answer_fields(*algorithm, *a, *b, options)));
+    } catch (const std::exception& e) {
+      lines.push_back(error_line(c.id, e.what(), algorithm));
+    }
+  }
+  return lines;
 }
 
 /// Every selected algorithm on one valid case: one output line each. Unless the algorithms
@@ -83,73 +140,32 @@ std::vector<std::string> answer_case(const PointCase& c,
   return lines;
 }
 
-/// A JSON value as a table cell: numbers with 12 significant digits (the JSON lines keep all
-/// 17), booleans as yes/no, vectors in brackets, absent as "-".
-std::string cell(const Json& j) {
-  if (j.is_null()) return "-";
-  if (j.is_boolean()) return j.get<bool>() ? "yes" : "no";
-  if (j.is_number_float()) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.12g", j.get<double>());
-    return buffer;
-  }
-  if (j.is_array()) {
-    std::string out = "[";
-    for (std::size_t k = 0; k < j.size(); ++k)
-      out += (k ? " " : "") + cell(j[k]);
-    return out + "]";
-  }
-  if (j.is_string()) return j.get<std::string>();
-  return j.dump();
-}
-
-/// The answers as an aligned table, one row per answer line, for people at a terminal: the
-/// columns every answer has, then the distance, depth and exact fields that some have.
-void write_table(std::ostream& out, const std::vector<std::string>& lines) {
-  static const std::vector<std::string> kColumns = {"id",          "algorithm", "intersect",
-                                                    "distance",    "depth",     "iterations",
-                                                    "termination", "method",    "error"};
-  std::vector<std::vector<std::string>> rows;
-  std::vector<bool> used(kColumns.size(), false);
-  for (const std::string& line : lines) {
-    const Json j = Json::parse(line);
-    std::vector<std::string> row;
-    for (std::size_t c = 0; c < kColumns.size(); ++c) {
-      const auto found = j.find(kColumns[c]);
-      row.push_back(found == j.end() ? "-" : cell(*found));
-      used[c] = used[c] || found != j.end();
-    }
-    rows.push_back(std::move(row));
-  }
-  std::vector<std::size_t> width(kColumns.size(), 0);
-  for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    width[c] = kColumns[c].size();
-    for (const auto& row : rows)
-      width[c] = std::max(width[c], row[c].size());
-  }
-  auto write_row = [&](const std::vector<std::string>& row) {
-    std::string text;
-    for (std::size_t c = 0; c < kColumns.size(); ++c)
-      if (used[c]) text += row[c] + std::string(width[c] - row[c].size() + 2, ' ');
-    while (!text.empty() && text.back() == ' ')
-      text.pop_back();
-    out << text << "\n";
-  };
-  write_row(kColumns);
-  for (const auto& row : rows)
-    write_row(row);
-}
-
 /// Cases from the two point files or the cases file; file-level problems become CaseErrors.
 std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std::string& source) {
   if (args.cases.empty()) {
     source = args.files[0] + " " + args.files[1];
+    const std::string id = args.files[0] + " vs " + args.files[1];
+    if (!args.decomposition.empty()) {
+      try {
+        PointCase c{id,
+                    {},
+                    {},
+                    0,
+                    0,
+                    exact::read_closed_mesh(args.files[0]),
+                    exact::read_closed_mesh(args.files[1])};
+        c.a = c.mesh_a->vertices;
+        c.b = c.mesh_b->vertices;
+        return {std::move(c)};
+      } catch (const std::runtime_error& e) {
+        return {CaseError{id, 0, e.what()}};
+      }
+    }
     try {
-      return {PointCase{args.files[0] + " vs " + args.files[1],
-                        experiment::read_point_file(args.files[0]),
+      return {PointCase{id, experiment::read_point_file(args.files[0]),
                         experiment::read_point_file(args.files[1]), args.radius_a, args.radius_b}};
     } catch (const experiment::InputError& e) {
-      return {CaseError{args.files[0] + " vs " + args.files[1], 0, e.what()}};
+      return {CaseError{id, 0, e.what()}};
     }
   }
   source = args.cases;
@@ -185,6 +201,16 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
   cmd->add_option("--max-iterations", args.max_iterations,
                   "iteration bound for every iterative algorithm (default: each one's own)")
       ->check(CLI::Range(1, 1 << 20));
+  std::vector<std::string> decompositions;
+  for (const auto& d : experiment::decompositions())
+    decompositions.emplace_back(d.name);
+  cmd->add_option("--decomposition", args.decomposition,
+                  "read the two files as closed meshes (non-convex solids): the convex "
+                  "algorithms answer the pieces of this decomposition (" +
+                      experiment::decomposition_names() +
+                      "), `exact` the solids; in a cases file, the decomposition of the mesh "
+                      "sides (default hull)")
+      ->check(CLI::IsMember(decompositions));
   cmd->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   cmd->add_flag("--depth", args.depth, "exact penetration depth for intersecting pairs (slow)");
   cmd->add_option("--radius-a", args.radius_a,
@@ -214,6 +240,11 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
     err << "gjklab query: give two point files or --cases FILE (not both)\n";
     return 2;
   }
+  if (!args.decomposition.empty() && (args.radius_a != 0 || args.radius_b != 0)) {
+    err << "gjklab query: --radius-a/--radius-b sweep point clouds, not meshes "
+           "(--decomposition)\n";
+    return 2;
+  }
   if (!args.cases.empty() && (args.radius_a != 0 || args.radius_b != 0)) {
     err << "gjklab query: --radius-a/--radius-b apply to two point files; a cases file gives "
            "\"radius_a\" and \"radius_b\" on each line\n";
@@ -239,6 +270,8 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
   options.oracle.depth = args.depth;
   options.precision = *precision_from_string(args.precision);  // checked by the parser
+  const experiment::DecompositionInfo& decomposition = experiment::decomposition_named(
+      args.decomposition.empty() ? "hull" : args.decomposition);  // checked by the parser
 
   std::string source;
   const std::vector<CaseOrError> cases = load_cases(args, in, source);
@@ -246,7 +279,10 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < cases.size(); i = next++) {
-      if (const auto* c = std::get_if<PointCase>(&cases[i]))
+      const auto* c = std::get_if<PointCase>(&cases[i]);
+      if (c && (c->mesh_a || c->mesh_b))
+        lines[i] = answer_mesh_case(*c, selected, decomposition, options);
+      else if (c)
         lines[i] = answer_case(*c, selected, !args.algorithms.empty(), options);
     }
   };
@@ -272,7 +308,7 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
     output.insert(output.end(), lines[i].begin(), lines[i].end());
   }
   if (args.format == "table") {
-    write_table(out, output);
+    write_answer_table(out, output);
   } else {
     for (const std::string& line : output)
       out << line << "\n";

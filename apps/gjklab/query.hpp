@@ -24,6 +24,10 @@ struct QueryArgs {
   std::string format = "json";  ///< "json" (a line per answer) or "table" (for a terminal)
   /// Floating-point type of the GJK queries: "float", "double" or "long double".
   std::string precision = "double";
+  /// A decomposition's name: the two files are closed meshes, and the convex algorithms answer
+  /// its pieces (a cases file: the decomposition of its mesh sides). Empty: the files are point
+  /// clouds, and mesh sides of a cases file use `hull`.
+  std::string decomposition;
 };
 
 /// Registers the `query` subcommand and its options on app.

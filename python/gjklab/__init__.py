@@ -11,6 +11,8 @@ The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` comm
     read_points(path)                                 a point or mesh file as an n x 3 array
     read_closed_mesh(path)                            a closed triangle mesh: (vertices, faces)
     exact_mesh(a, b)                                  the exact answer for two closed meshes' solids
+    decompose(mesh, method="exact")                   a closed mesh's convex pieces, by name
+    query_mesh(a, b, algorithm, decomposition)        an algorithm on two closed meshes
     run(experiment, out=..., threads=...)             an experiment file (or TOML text) -> archive
 
 and read_archive(path) reads an archive into pandas DataFrames.
@@ -22,10 +24,12 @@ from ._gjklab import (
     RunReport,
     Shape,
     algorithms,
+    decompose,
     exact,
     exact_mesh,
     families,
     query,
+    query_mesh,
     read_closed_mesh,
     read_points,
     real_objects,
@@ -40,10 +44,12 @@ __all__ = [
     "RunReport",
     "Shape",
     "algorithms",
+    "decompose",
     "exact",
     "exact_mesh",
     "families",
     "query",
+    "query_mesh",
     "read_archive",
     "read_closed_mesh",
     "read_points",

@@ -63,3 +63,50 @@ def test_bad_arrays_are_refused():
         gjklab.exact_mesh(BOX, (vertices, faces[:, :2]))
     with pytest.raises(ValueError, match="face 0 has index -1"):
         gjklab.exact_mesh(BOX, (vertices, np.full((12, 3), -1)))
+
+
+def l_prism():
+    """An L: bar [0, 2] x [0, 1], arm [0, 1] x [1, 2], z in [0, 1] (volume 3)."""
+    xy = [(0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2)]
+    vertices = np.array([(x, y, z) for z in (0.0, 1.0) for x, y in xy], dtype=np.float64)
+    faces = []
+    for k in range(1, 5):
+        faces += [(0, k + 1, k), (6, 6 + k, 7 + k)]
+    for i in range(6):
+        j = (i + 1) % 6
+        faces += [(i, j, 6 + j), (i, 6 + j, 6 + i)]
+    return vertices, np.array(faces)
+
+
+def test_decompose_exact_l_is_proven_pieces_with_integer_corners():
+    d = gjklab.decompose(l_prism(), "exact")
+    assert d["method"] == "exact" and d["proven"] and d["max_rounding"] == 0
+    assert len(d["pieces"]) >= 2
+    for piece in d["pieces"]:
+        # Cut along the planes of the reflex edge: integer corners inside the L's box.
+        assert np.array_equal(piece, np.round(piece))
+        assert piece.min() >= 0 and piece.max() <= 2
+
+
+def test_decompose_hull_and_bad_names():
+    vertices, faces = l_prism()
+    d = gjklab.decompose((vertices, faces), "hull")
+    assert len(d["pieces"]) == 1 and not d["proven"]
+    assert np.array_equal(d["pieces"][0], vertices)
+    with pytest.raises(ValueError, match="unknown decomposition 'nope'"):
+        gjklab.decompose((vertices, faces), "nope")
+
+
+def test_query_mesh_hull_false_positive_and_exact_pieces():
+    l = l_prism()
+    box_v, box_f = gjklab.read_closed_mesh(BOX)  # the unit cube
+    notch = (box_v * 0.5 + [1.25, 1.25, 0.25], box_f)
+    truth = gjklab.query_mesh(l, notch, "exact")
+    assert not truth["intersect"] and truth["distance"] == 0.25
+    assert truth["method"] == "mesh-truth"
+    hull = gjklab.query_mesh(l, notch, "gjk-johnson", "hull")
+    assert hull["intersect"] and hull["decomposition"] == "hull"
+    pieces = gjklab.query_mesh(l, notch, "gjk-johnson", "exact", max_iterations=64)
+    assert not pieces["intersect"]
+    assert pieces["distance"] == pytest.approx(0.25, abs=1e-12)
+    assert pieces["pieces_a"] >= 2 and pieces["piece_pairs_tested"] >= 1

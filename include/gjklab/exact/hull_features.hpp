@@ -33,6 +33,7 @@
 #include <span>
 #include <vector>
 
+#include "gjklab/geometry/triangle_mesh.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab::exact {
@@ -57,5 +58,15 @@ struct HullFeatures {
 /// Exact hull features of a non-empty cloud of finite points. Throws std::invalid_argument
 /// (gjklab::InvalidGeometry) for an empty cloud or a non-finite coordinate.
 HullFeatures hull_features(std::span<const Vec3> cloud);
+
+}  // namespace gjklab::exact
+
+namespace gjklab::exact {
+
+/// The boundary of a full-dimensional cloud's convex hull as a closed triangle mesh (each face
+/// of hull_features fanned from its first corner; counter-clockwise seen from outside), so that
+/// a convex cloud can stand beside a non-convex mesh. Throws std::invalid_argument for a cloud
+/// that spans fewer than three dimensions (it bounds no solid), and as hull_features does.
+TriangleMesh hull_mesh(std::span<const Vec3> cloud);
 
 }  // namespace gjklab::exact

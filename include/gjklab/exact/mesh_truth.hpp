@@ -15,8 +15,10 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "gjklab/exact/oracle.hpp"
+#include "gjklab/geometry/enum_names.hpp"
 #include "gjklab/geometry/triangle_mesh.hpp"
 #include "gjklab/geometry/types.hpp"
 
@@ -38,6 +40,19 @@ enum class MeshContact : std::uint8_t {
   a_inside_b,      ///< A's surface lies inside solid B (no triangles meet)
   b_inside_a,      ///< B's surface lies inside solid A
 };
+
+inline constexpr auto kMeshContactNames = std::to_array<EnumName<MeshContact>>({
+    {MeshContact::separated, "separated"},
+    {MeshContact::triangles_meet, "triangles_meet"},
+    {MeshContact::a_inside_b, "a_inside_b"},
+    {MeshContact::b_inside_a, "b_inside_a"},
+});
+static_assert(in_value_order(kMeshContactNames) &&
+              ends_at(kMeshContactNames, MeshContact::b_inside_a));
+
+constexpr std::string_view to_string(MeshContact c) {
+  return name_of(kMeshContactNames, c);
+}
 
 struct MeshTruth {
   bool intersect = false;  ///< the closed solids share a point

@@ -4,12 +4,14 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
+#include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/geometry/polytope.hpp"
 
@@ -182,6 +184,57 @@ std::vector<Vec3> json_cloud(const nlohmann::json& j, const char* cloud) {
   return out;
 }
 
+std::vector<MeshFace> json_faces(const nlohmann::json& faces, const char* side) {
+  const std::string where = std::string("mesh ") + side;
+  if (!faces.is_array())
+    throw std::invalid_argument(where + ": \"faces\" must be an array of [i, j, k]");
+  std::vector<MeshFace> out;
+  out.reserve(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& face = faces[f];
+    if (!face.is_array() || face.size() != 3)
+      throw std::invalid_argument(where + " face " + std::to_string(f) + ": expected [i, j, k]");
+    MeshFace& indices = out.emplace_back();
+    for (int k = 0; k < 3; ++k) {
+      if (!face[k].is_number_unsigned() || face[k].get<std::uint64_t>() > UINT32_MAX)
+        throw std::invalid_argument(where + " face " + std::to_string(f) +
+                                    ": a vertex index is not an integer in [0, 2^32)");
+      indices[k] = face[k].get<std::uint32_t>();
+    }
+  }
+  return out;
+}
+
+/// A side given as {"vertices": [...], "faces": [...]}: a closed mesh, validated.
+TriangleMesh json_mesh(const nlohmann::json& side, const char* name) {
+  const std::string where = std::string("mesh ") + name;
+  for (const char* key : {"vertices", "faces"})
+    if (!side.contains(key)) throw std::invalid_argument(where + ": missing key \"" + key + "\"");
+  TriangleMesh mesh;
+  try {
+    mesh.vertices = json_cloud(side, "vertices");
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
+  }
+  mesh.faces = json_faces(side.at("faces"), name);
+  try {
+    exact::validate_closed_mesh(mesh, where);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return mesh;
+}
+
+/// One side of a case: a point list, or a mesh (then `mesh` is set and the vertices returned).
+std::vector<Vec3> json_side(const nlohmann::json& j, const char* name,
+                            std::optional<TriangleMesh>& mesh) {
+  if (j.contains(name) && j.at(name).is_object()) {
+    mesh = json_mesh(j.at(name), name);
+    return mesh->vertices;
+  }
+  return json_cloud(j, name);
+}
+
 /// An optional radius of a sphere-swept shape: 0 when absent, else a finite number >= 0.
 double json_radius(const nlohmann::json& j, const char* key) {
   if (!j.contains(key)) return 0;
@@ -314,10 +367,12 @@ CaseOrError parse_case_line(std::string_view text, int line) {
     c.id = id.is_string() ? id.get<std::string>() : json_line(id);
   }
   try {
-    c.a = json_cloud(j, "a");
-    c.b = json_cloud(j, "b");
+    c.a = json_side(j, "a", c.mesh_a);
+    c.b = json_side(j, "b", c.mesh_b);
     c.radius_a = json_radius(j, "radius_a");
     c.radius_b = json_radius(j, "radius_b");
+    if ((c.mesh_a || c.mesh_b) && (c.radius_a != 0 || c.radius_b != 0))
+      throw std::invalid_argument("radius_a and radius_b sweep point clouds, not meshes");
   } catch (const std::invalid_argument& e) {
     return CaseError{c.id, line, e.what()};
   }
@@ -346,8 +401,15 @@ std::string case_to_json_line(const PointCase& c) {
       arr.push_back({p.x(), p.y(), p.z()});
     return arr;
   };
+  auto side = [&](const std::vector<Vec3>& pts, const std::optional<TriangleMesh>& mesh) {
+    if (!mesh) return cloud(pts);
+    nlohmann::json faces = nlohmann::json::array();
+    for (const MeshFace& f : mesh->faces)
+      faces.push_back({f[0], f[1], f[2]});
+    return nlohmann::json{{"vertices", cloud(mesh->vertices)}, {"faces", faces}};
+  };
   // nlohmann writes the shortest decimal that reads back as the same double.
-  nlohmann::json j{{"id", c.id}, {"a", cloud(c.a)}, {"b", cloud(c.b)}};
+  nlohmann::json j{{"id", c.id}, {"a", side(c.a, c.mesh_a)}, {"b", side(c.b, c.mesh_b)}};
   if (c.radius_a != 0) j["radius_a"] = c.radius_a;
   if (c.radius_b != 0) j["radius_b"] = c.radius_b;
   return json_line(j);

@@ -3,10 +3,14 @@
 //
 // JSON-lines format, one case per line:
 //   {"id": "name", "a": [[x, y, z], ...], "b": [[x, y, z], ...]}
-// Coordinates are JSON numbers; 17 significant digits round-trip a double exactly.
+// Coordinates are JSON numbers; 17 significant digits round-trip a double exactly. A side may
+// be a closed triangle mesh in place of a point list (a non-convex solid):
+//   "a": {"vertices": [[x, y, z], ...], "faces": [[i, j, k], ...]}
+// with faces counter-clockwise seen from outside, validated as exact/closed_mesh.hpp says.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 #include <span>
@@ -16,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "gjklab/geometry/triangle_mesh.hpp"
 #include "gjklab/geometry/types.hpp"
 
 namespace gjklab::experiment {
@@ -42,6 +47,9 @@ struct PointCase {
   /// finite and >= 0; 0 when absent).
   double radius_a = 0;
   double radius_b = 0;
+  /// A side given as a closed mesh (then `a` or `b` holds its vertices): validated, never
+  /// repaired. A case with a mesh side has no radii.
+  std::optional<TriangleMesh> mesh_a, mesh_b;
 };
 
 /// A line of a cases file that could not be read, with the id if one was found.

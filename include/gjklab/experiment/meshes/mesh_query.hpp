@@ -1,0 +1,39 @@
+// One algorithm's answer for a pair of closed meshes, in the fields `gjklab query` prints and
+// Python returns: `exact` answers the solids themselves (exact::mesh_truth); every other
+// algorithm answers the pieces of the chosen decomposition (run_on_pieces), and says which
+// decomposition, how many pieces and how many pairs of them it ran.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/registry/answer_fields.hpp"
+#include "gjklab/geometry/polytope.hpp"
+#include "gjklab/geometry/triangle_mesh.hpp"
+
+namespace gjklab::experiment {
+
+/// One side of a non-convex pair: its closed mesh and, once a convex algorithm needs them, its
+/// decomposition's pieces.
+struct MeshSide {
+  TriangleMesh mesh;
+  std::optional<Decomposition> decomposition;
+  std::vector<Polytope> pieces;
+};
+
+/// Decomposes the side unless it already is; `source` names the mesh in errors.
+void decompose_side(MeshSide& side, const DecompositionInfo& decomposition, std::string_view source,
+                    const DecompositionOptions& options);
+
+/// The answer fields of `algorithm` for the pair. For `exact`: algorithm, intersect, distance,
+/// the exact squared distance (distance2_num, distance2_den), method "mesh-truth", contact, the
+/// deciding faces (face_a, face_b, when triangles decide) and the exact evaluations made. For
+/// the others: answer_fields of the pieces' answer, then decomposition, pieces_a, pieces_b,
+/// piece_pairs, piece_pairs_tested and the deciding pieces; both sides must be decomposed.
+AnswerFields mesh_answer_fields(const AlgorithmInfo& algorithm, const MeshSide& a,
+                                const MeshSide& b, const AlgorithmOptions& options);
+
+}  // namespace gjklab::experiment

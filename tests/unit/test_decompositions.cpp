@@ -1,0 +1,258 @@
+// Convex decompositions of closed meshes (hull, exact) and the convex algorithms run over their
+// pieces, judged against the exact truth of the solids (exact::mesh_truth).
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "gjklab/exact/closed_mesh.hpp"
+#include "gjklab/exact/convex_decomposition.hpp"
+#include "gjklab/exact/hull_features.hpp"
+#include "gjklab/exact/mesh_truth.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/piece_query.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
+
+using namespace gjklab;
+using experiment::Decomposition;
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+/// The prism over a polygon (counter-clockwise seen from +z, star-shaped from its first corner,
+/// so that its fan from there triangulates it) between heights z0 < z1: a closed mesh.
+TriangleMesh prism(const std::vector<Vec2>& polygon, double z0, double z1) {
+  TriangleMesh m;
+  const auto n = static_cast<std::uint32_t>(polygon.size());
+  for (const double z : {z0, z1})
+    for (const Vec2& p : polygon)
+      m.vertices.emplace_back(p.x(), p.y(), z);
+  for (std::uint32_t k = 1; k + 1 < n; ++k) {
+    m.faces.push_back({0, k + 1, k});          // bottom, seen from −z
+    m.faces.push_back({n, n + k, n + k + 1});  // top
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    m.faces.push_back({i, j, n + j});
+    m.faces.push_back({i, n + j, n + i});
+  }
+  return m;
+}
+
+/// An L: the unit square's 2 × 1 bar along x and 1 × 1 arm up y, one unit thick.
+TriangleMesh l_prism() {
+  return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, 1);
+}
+
+TriangleMesh box(const Vec3& lo, const Vec3& hi) {
+  return prism({{lo.x(), lo.y()}, {hi.x(), lo.y()}, {hi.x(), hi.y()}, {lo.x(), hi.y()}}, lo.z(),
+               hi.z());
+}
+
+/// Six times the volume of the convex hull of a piece's corners (its hull mesh, fanned
+/// triple products; exact for small integer coordinates).
+double six_volume(const std::vector<Vec3>& corners) {
+  const TriangleMesh hull = exact::hull_mesh(corners);
+  double sum = 0;
+  for (const MeshFace& f : hull.faces)
+    sum += hull.vertices[f[0]].dot(hull.vertices[f[1]].cross(hull.vertices[f[2]]));
+  return sum;
+}
+
+struct RigidMotion {
+  Mat3 rotation;
+  Vec3 shift;
+  Vec3 operator()(const Vec3& v) const { return rotation * v + shift; }
+};
+
+TriangleMesh posed(TriangleMesh m, const RigidMotion& pose) {
+  for (Vec3& v : m.vertices)
+    v = pose(v);
+  return m;
+}
+
+/// The decomposition's pieces moved by the pose exactly as the mesh's vertices are.
+std::vector<Polytope> posed_pieces(const Decomposition& d, const RigidMotion& pose) {
+  std::vector<Polytope> out;
+  for (std::vector<Vec3> corners : d.pieces) {
+    for (Vec3& c : corners)
+      c = pose(c);
+    out.emplace_back(std::move(corners));
+  }
+  return out;
+}
+
+Decomposition decomposed(const char* name, const TriangleMesh& m) {
+  return experiment::decomposition_named(name).decompose(m, "test mesh", {});
+}
+
+const experiment::AlgorithmInfo& algorithm(const char* name) {
+  const experiment::AlgorithmInfo* a = experiment::find_algorithm(name);
+  REQUIRE(a != nullptr);
+  return *a;
+}
+
+/// Whether moving B by `band` along one of the six axis directions separates the solids: the
+/// pair is then within `band` of touching, where a floating-point answer may go either way.
+bool within_band(const TriangleMesh& a, const TriangleMesh& b, double band) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double sign : {-1.0, 1.0}) {
+      const Vec3 step = sign * band * Vec3::Unit(axis);
+      if (!exact::mesh_truth(a, posed(b, {Mat3::Identity(), step})).intersect) return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("decompositions: by name, and an unknown name lists the valid ones",
+          "[unit][decomposition]") {
+  CHECK(experiment::decomposition_named("hull").name == "hull");
+  CHECK(experiment::decomposition_named("exact").name == "exact");
+  CHECK_THROWS_WITH(
+      experiment::decomposition_named("vhacd"),
+      Catch::Contains("unknown decomposition 'vhacd'") && Catch::Contains("hull, exact"));
+  const Decomposition h = decomposed("hull", l_prism());
+  REQUIRE(h.pieces.size() == 1);
+  CHECK(h.pieces[0] == l_prism().vertices);
+  CHECK_FALSE(h.proven);
+}
+
+TEST_CASE("exact decomposition: an L prism is convex pieces whose volumes add up to the L's",
+          "[unit][decomposition]") {
+  const TriangleMesh l = l_prism();
+  REQUIRE_NOTHROW(exact::validate_closed_mesh(l, "L"));
+  const Decomposition d = decomposed("exact", l);
+  CHECK(d.proven);
+  CHECK(d.pieces.size() >= 2);
+  // Cut along the planes of the reflex edge (x = 1 or y = 1): every corner an integer point.
+  CHECK(d.max_rounding == 0);
+  double total = 0;
+  for (const auto& piece : d.pieces) {
+    for (const Vec3& c : piece) {
+      CHECK((c.array() >= 0).all());
+      CHECK((c.array() <= 2).all());
+      CHECK(c == c.array().round().matrix());
+    }
+    total += six_volume(piece);
+  }
+  CHECK(total == 6 * 3.0);  // the L's volume is 3
+}
+
+TEST_CASE("exact decomposition: a convex mesh is one piece of its own corners",
+          "[unit][decomposition]") {
+  const TriangleMesh cube = box(Vec3(-1, -2, -3), Vec3(1, 2, 3));
+  const Decomposition d = decomposed("exact", cube);
+  REQUIRE(d.pieces.size() == 1);
+  CHECK(d.max_rounding == 0);
+  std::vector<Vec3> corners = d.pieces[0], vertices = cube.vertices;
+  auto lex = [](const Vec3& x, const Vec3& y) {
+    return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
+  };
+  std::sort(corners.begin(), corners.end(), lex);
+  std::sort(vertices.begin(), vertices.end(), lex);
+  CHECK(corners == vertices);
+}
+
+TEST_CASE("exact decomposition: beyond the face limit the reason is given",
+          "[unit][decomposition]") {
+  const TriangleMesh big = star_mesh(40, 30, [](const Vec3&) { return 1.0; });
+  REQUIRE(big.faces.size() > exact::kMaxDecompositionFaces);
+  CHECK_THROWS_AS(exact::exact_convex_decomposition(big, "big"), exact::DecompositionError);
+  CHECK_THROWS_WITH(exact::exact_convex_decomposition(big, "big"),
+                    Catch::Contains("big: exact convex decomposition: 2340 faces, more than the "
+                                    "2000 it accepts"));
+}
+
+TEST_CASE(
+    "box in the notch of an L: the hull says intersect, the exact pieces and the truth "
+    "say apart",
+    "[unit][decomposition]") {
+  const TriangleMesh l = l_prism();
+  // In the notch [1, 2] × [1, 2], a quarter unit from both arms of the L.
+  const TriangleMesh inside_notch = box(Vec3(1.25, 1.25, 0), Vec3(1.75, 1.75, 1));
+  const exact::MeshTruth truth = exact::mesh_truth(l, inside_notch);
+  REQUIRE_FALSE(truth.intersect);
+  CHECK(truth.distance == 0.25);
+  const auto& gjk = algorithm("gjk-johnson");
+  const experiment::AlgorithmOptions options;
+  const auto hull_l = experiment::piece_polytopes(decomposed("hull", l));
+  const auto exact_l = experiment::piece_polytopes(decomposed("exact", l));
+  const auto notch = experiment::piece_polytopes(decomposed("hull", inside_notch));
+  CHECK(experiment::run_on_pieces(gjk, hull_l, notch, options).outcome.intersect);
+  const experiment::PieceOutcome pieces = experiment::run_on_pieces(gjk, exact_l, notch, options);
+  CHECK_FALSE(pieces.outcome.intersect);
+  CHECK(*pieces.outcome.distance == Approx(0.25).margin(1e-12));
+  CHECK(pieces.piece_pairs == exact_l.size());
+  CHECK(pieces.outcome.termination == Termination::converged);
+}
+
+TEST_CASE("piece query: the answer is the least over every pair of pieces, fewer pairs run",
+          "[unit][decomposition]") {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> radius(0.4, 1.0);
+  const TriangleMesh star = star_mesh(4, 7, [&](const Vec3&) { return radius(rng); });
+  const auto pieces = experiment::piece_polytopes(decomposed("exact", star));
+  REQUIRE(pieces.size() >= 3);
+  const auto& gjk = algorithm("gjk-johnson");
+  const experiment::AlgorithmOptions options;
+  std::uniform_real_distribution<double> offset(-3, 3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3 shift(offset(rng), offset(rng), offset(rng));
+    std::vector<Polytope> moved;
+    for (const Polytope& p : pieces)
+      moved.push_back(p.translated(shift));
+    const experiment::PieceOutcome found = experiment::run_on_pieces(gjk, pieces, moved, options);
+    bool any = false;
+    double least = std::numeric_limits<double>::infinity();
+    for (const Polytope& p : pieces)
+      for (const Polytope& q : moved) {
+        const experiment::Outcome o = experiment::run_algorithm(gjk, p, q, {}, options);
+        any = any || o.intersect;
+        if (!o.intersect) least = std::min(least, *o.distance);
+      }
+    CHECK(found.outcome.intersect == any);
+    if (!any) CHECK(*found.outcome.distance == least);
+    CHECK(found.piece_pairs == pieces.size() * pieces.size());
+    CHECK(found.piece_pairs_tested <= found.piece_pairs);
+    if (shift.norm() > 2.5) CHECK(found.piece_pairs_tested < found.piece_pairs);
+  }
+}
+
+TEST_CASE("non-convex stars: GJK over the exact pieces is never wrong outside the touching band",
+          "[unit][decomposition]") {
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> radius(0.35, 1.0), unit(-1, 1), angle(0, 2 * M_PI);
+  const TriangleMesh a = star_mesh(5, 8, [&](const Vec3&) { return radius(rng); });
+  const TriangleMesh b = star_mesh(4, 7, [&](const Vec3&) { return radius(rng); });
+  const Decomposition da = decomposed("exact", a), db = decomposed("exact", b);
+  const auto pieces_a = experiment::piece_polytopes(da);
+  const auto& gjk = algorithm("gjk-johnson");
+  const experiment::AlgorithmOptions options;
+  constexpr double kBand = 1e-9;  // absolute, length units; the meshes have radius ≤ 1
+  int checked = 0, intersecting = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const Vec3 axis = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    const RigidMotion pose{Eigen::AngleAxisd(angle(rng), axis).toRotationMatrix(),
+                           1.6 * Vec3(unit(rng), unit(rng), unit(rng))};
+    const TriangleMesh moved = posed(b, pose);
+    const exact::MeshTruth truth = exact::mesh_truth(a, moved);
+    const experiment::PieceOutcome p =
+        experiment::run_on_pieces(gjk, pieces_a, posed_pieces(db, pose), options);
+    if (truth.intersect) {
+      if (!p.outcome.intersect) CHECK(within_band(a, moved, kBand));
+      intersecting += truth.intersect;
+    } else if (truth.distance > kBand) {
+      CHECK_FALSE(p.outcome.intersect);
+      CHECK(std::abs(*p.outcome.distance - truth.distance) <= 1e-9);
+    }
+    ++checked;
+  }
+  CHECK(intersecting > 10);
+  CHECK(checked - intersecting > 10);
+}
