@@ -2,15 +2,20 @@
 // bound (gjklab.read_closed_mesh, gjklab.exact_mesh).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/experiment/meshes/decompositions.hpp"
 #include "gjklab/experiment/meshes/mesh_query.hpp"
+#ifdef GJKLAB_HAVE_FCL
+#include "gjklab/peers/fcl_mesh.hpp"
+#endif
 #include "inputs.hpp"
 
 namespace gjklab::python {
@@ -60,6 +65,33 @@ TriangleMesh mesh_of(const py::handle& object, const char* side) {
   }
 }
 
+/// A mesh as (vertices n×3 float64, faces m×3 uint32).
+py::tuple mesh_arrays(const TriangleMesh& mesh) {
+  py::array_t<double> vertices({static_cast<py::ssize_t>(mesh.vertices.size()), py::ssize_t{3}});
+  py::array_t<std::uint32_t> faces({static_cast<py::ssize_t>(mesh.faces.size()), py::ssize_t{3}});
+  auto v = vertices.mutable_unchecked<2>();
+  auto f = faces.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < v.shape(0); ++i)
+    for (int k = 0; k < 3; ++k)
+      v(i, k) = mesh.vertices[static_cast<std::size_t>(i)][k];
+  for (py::ssize_t i = 0; i < f.shape(0); ++i)
+    for (int k = 0; k < 3; ++k)
+      f(i, k) = mesh.faces[static_cast<std::size_t>(i)][k];
+  return py::make_tuple(vertices, faces);
+}
+
+/// Points of a plane from a k×2 float64 array (or nested lists); ValueError otherwise.
+std::vector<PlanePoint> plane_points(const py::handle& object, const char* name) {
+  const auto array = py::array_t<double, py::array::forcecast>::ensure(object);
+  if (!array || array.ndim() != 2 || array.shape(1) != 2)
+    throw py::value_error(std::string(name) + ": expected a k×2 array of numbers");
+  const auto r = array.unchecked<2>();
+  std::vector<PlanePoint> out(static_cast<std::size_t>(r.shape(0)));
+  for (py::ssize_t i = 0; i < r.shape(0); ++i)
+    out[static_cast<std::size_t>(i)] = {r(i, 0), r(i, 1)};
+  return out;
+}
+
 py::dict truth_dict(const exact::MeshTruth& t) {
   py::dict d;
   d["intersect"] = t.intersect;
@@ -77,23 +109,7 @@ py::dict truth_dict(const exact::MeshTruth& t) {
 
 void def_meshes(py::module_& m) {
   m.def(
-      "read_closed_mesh",
-      [](const py::handle& path) {
-        const TriangleMesh mesh = mesh_of(path, "a");
-        py::array_t<double> vertices(
-            {static_cast<py::ssize_t>(mesh.vertices.size()), py::ssize_t{3}});
-        py::array_t<std::uint32_t> faces(
-            {static_cast<py::ssize_t>(mesh.faces.size()), py::ssize_t{3}});
-        auto v = vertices.mutable_unchecked<2>();
-        auto f = faces.mutable_unchecked<2>();
-        for (py::ssize_t i = 0; i < v.shape(0); ++i)
-          for (int k = 0; k < 3; ++k)
-            v(i, k) = mesh.vertices[static_cast<std::size_t>(i)][k];
-        for (py::ssize_t i = 0; i < f.shape(0); ++i)
-          for (int k = 0; k < 3; ++k)
-            f(i, k) = mesh.faces[static_cast<std::size_t>(i)][k];
-        return py::make_tuple(vertices, faces);
-      },
+      "read_closed_mesh", [](const py::handle& path) { return mesh_arrays(mesh_of(path, "a")); },
       py::arg("path"),
       R"(A closed triangle mesh file (.off, .obj, .ply or .stl) as (vertices, faces): an n×3
 float64 array and an m×3 uint32 array, counter-clockwise seen from outside. Raises ValueError
@@ -147,29 +163,76 @@ max_rounding (how far rounding the exact pieces' corners to doubles moved them, 
 Raises ValueError when the mesh is bad or the decomposition fails, saying why.)");
   m.def(
       "query_mesh",
-      [](const py::handle& a, const py::handle& b, const std::string& algorithm,
-         const std::string& decomposition, const py::kwargs& options) {
-        const experiment::AlgorithmSpec spec = spec_from(algorithm, options);
-        const experiment::AlgorithmInfo& info = algorithm_named(spec.name);
+      [](const py::handle& a, const py::handle& b, const py::handle& algorithm,
+         const std::string& decomposition, const py::kwargs& options) -> py::object {
+        const bool one = py::isinstance<py::str>(algorithm);
+        const auto names = one ? std::vector<std::string>{algorithm.cast<std::string>()}
+                               : algorithm.cast<std::vector<std::string>>();
         experiment::MeshSide sa{mesh_of(a, "a"), std::nullopt, {}};
         experiment::MeshSide sb{mesh_of(b, "b"), std::nullopt, {}};
-        try {
-          const auto& chosen = experiment::decomposition_named(decomposition);
-          if (info.kind != experiment::AnswerKind::exact) {
-            experiment::decompose_side(sa, chosen, "mesh a", {});
-            experiment::decompose_side(sb, chosen, "mesh b", {});
+        py::list answers;
+        for (const std::string& name : names) {
+          const experiment::AlgorithmSpec spec = spec_from(name, options);
+          const experiment::AlgorithmInfo& info = algorithm_named(spec.name);
+          try {
+            const auto& chosen = experiment::decomposition_named(decomposition);
+            if (info.kind != experiment::AnswerKind::exact) {
+              experiment::decompose_side(sa, chosen, "mesh a", {});
+              experiment::decompose_side(sb, chosen, "mesh b", {});
+            }
+            answers.append(fields_dict(experiment::mesh_answer_fields(info, sa, sb, spec.options)));
+          } catch (const std::exception& e) {
+            throw py::value_error(e.what());
           }
-          return fields_dict(experiment::mesh_answer_fields(info, sa, sb, spec.options));
-        } catch (const std::exception& e) {
-          throw py::value_error(e.what());
         }
+        return one ? answers[0] : py::object(answers);
       },
       py::arg("a"), py::arg("b"), py::arg("algorithm") = "gjk-johnson",
       py::arg("decomposition") = "hull",
-      R"(One algorithm's answer for two closed meshes (file paths or (vertices, faces)), as
+      R"(An algorithm's answer for two closed meshes (file paths or (vertices, faces)), as
 `gjklab query` prints it: 'exact' answers the solids (mesh truth); any other algorithm runs over
 the pairs of pieces of the named decomposition and its answer says which, with pieces_a,
-pieces_b, piece_pairs and piece_pairs_tested. Keyword arguments are the algorithm's options.)");
+pieces_b, piece_pairs and piece_pairs_tested. With a list of algorithm names, a list of
+answers (the meshes decomposed once). Keyword arguments are the algorithms' options.)");
+  m.def(
+      "prism_mesh",
+      [](const py::handle& polygon, double z0, double z1) {
+        return mesh_arrays(prism_mesh(plane_points(polygon, "polygon"), z0, z1));
+      },
+      py::arg("polygon"), py::arg("z0"), py::arg("z1"),
+      R"(The prism over a polygon (k×2 corners, counter-clockwise seen from +z, star-shaped from
+its first corner) between heights z0 < z1, as (vertices, faces).)");
+  m.def(
+      "lathe_mesh",
+      [](const py::handle& profile, int segments, bool ring) {
+        return mesh_arrays(lathe_mesh(plane_points(profile, "profile"), segments, ring));
+      },
+      py::arg("profile"), py::arg("segments"), py::arg("ring"),
+      R"(The solid of revolution of a profile (k×2 points (r, z), counter-clockwise around the
+region, r >= 0) about the z axis in `segments` steps, as (vertices, faces). ring=True: every
+r > 0, the profile closed (a torus, a tube); ring=False: the first and last points on the axis
+(a ball, a peg, a cup).)");
+#ifdef GJKLAB_HAVE_FCL
+  m.def(
+      "fcl_mesh",
+      [](const py::handle& a, const py::handle& b) {
+        const peers::FclMesh ma(mesh_of(a, "a")), mb(mesh_of(b, "b"));
+        const peers::FclMeshAnswer collide = peers::fcl_mesh_collide(ma, mb);
+        const peers::FclMeshAnswer distance = peers::fcl_mesh_distance(ma, mb);
+        py::dict d;
+        d["intersect"] = collide.intersect;
+        d["distance"] = distance.distance ? py::object(py::float_(*distance.distance)) : py::none();
+        d["witness_a"] = vector_or_none(distance.witness_a);
+        d["witness_b"] = vector_or_none(distance.witness_b);
+        d["face_a"] = collide.intersect ? collide.face_a : distance.face_a;
+        d["face_b"] = collide.intersect ? collide.face_b : distance.face_b;
+        return d;
+      },
+      py::arg("a"), py::arg("b"),
+      R"(FCL's answer for two closed meshes as BVHModel<OBBRSS> (what robotics code queries):
+intersect from fcl::collide, distance and witnesses from fcl::distance, and the deciding faces.
+FCL tests triangles, not solids: a mesh inside the other does not intersect for it.)");
+#endif
 }
 
 }  // namespace gjklab::python

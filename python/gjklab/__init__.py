@@ -13,6 +13,9 @@ The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` comm
     exact_mesh(a, b)                                  the exact answer for two closed meshes' solids
     decompose(mesh, method="exact")                   a closed mesh's convex pieces, by name
     query_mesh(a, b, algorithm, decomposition)        an algorithm on two closed meshes
+    prism_mesh(polygon, z0, z1), lathe_mesh(profile, segments, ring)
+                                                      generated closed meshes
+    fcl_mesh(a, b)                                    FCL's BVH answer for two meshes (with FCL)
     run(experiment, out=..., threads=...)             an experiment file (or TOML text) -> archive
 
 and read_archive(path) reads an archive into pandas DataFrames.
@@ -28,6 +31,8 @@ from ._gjklab import (
     exact,
     exact_mesh,
     families,
+    lathe_mesh,
+    prism_mesh,
     query,
     query_mesh,
     read_closed_mesh,
@@ -36,6 +41,11 @@ from ._gjklab import (
     run,
 )
 from .archive import Archive, read_archive
+
+try:  # only when the module was built with FCL
+    from ._gjklab import fcl_mesh  # noqa: F401
+except ImportError:
+    pass
 
 __all__ = [
     "Archive",
@@ -48,6 +58,8 @@ __all__ = [
     "exact",
     "exact_mesh",
     "families",
+    "lathe_mesh",
+    "prism_mesh",
     "query",
     "query_mesh",
     "read_archive",

@@ -16,6 +16,7 @@
 #include "gjklab/experiment/meshes/decompositions.hpp"
 #include "gjklab/experiment/meshes/piece_query.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/geometry/triangle_mesh.hpp"
 
 using namespace gjklab;
 using experiment::Decomposition;
@@ -255,4 +256,60 @@ TEST_CASE("non-convex stars: GJK over the exact pieces is never wrong outside th
   }
   CHECK(intersecting > 10);
   CHECK(checked - intersecting > 10);
+}
+
+TEST_CASE("generated meshes: prisms and solids of revolution are closed meshes",
+          "[unit][decomposition]") {
+  std::vector<PlanePoint> circle;
+  for (int k = 0; k < 10; ++k)
+    circle.push_back({1 + 0.3 * std::cos(2 * M_PI * k / 10), 0.3 * std::sin(2 * M_PI * k / 10)});
+  const std::vector<PlanePoint> cup = {{0, 0},      {1, 0},       {1, 1.2},
+                                       {0.85, 1.2}, {0.85, 0.15}, {0, 0.15}};
+  const std::vector<PlanePoint> washer = {{0.5, -0.25}, {1, -0.25}, {1, 0.25}, {0.5, 0.25}};
+  const std::vector<PlanePoint> peg = {{0, -1}, {0.3, -1}, {0.3, 1}, {0, 1}};
+  CHECK_NOTHROW(exact::validate_closed_mesh(lathe_mesh(circle, 12, true), "torus"));
+  CHECK_NOTHROW(exact::validate_closed_mesh(lathe_mesh(cup, 16, false), "cup"));
+  CHECK_NOTHROW(exact::validate_closed_mesh(lathe_mesh(washer, 7, true), "washer"));
+  CHECK_NOTHROW(exact::validate_closed_mesh(lathe_mesh(peg, 3, false), "peg"));
+  CHECK_NOTHROW(exact::validate_closed_mesh(l_prism(), "L"));
+  CHECK(lathe_mesh(circle, 12, true).faces.size() == 2 * 10 * 12);
+  CHECK(lathe_mesh(cup, 16, false).faces.size() == 2 * 16 * 4);  // 3 bands and 2 pole fans
+  // A clockwise profile turns the solid inside out, which the checks refuse.
+  std::vector<PlanePoint> clockwise(circle.rbegin(), circle.rend());
+  CHECK_THROWS_WITH(exact::validate_closed_mesh(lathe_mesh(clockwise, 12, true), "inverted"),
+                    Catch::Contains("negative signed volume"));
+  CHECK_THROWS_WITH(lathe_mesh(cup, 16, true), Catch::Contains("point 0 must have r > 0"));
+  CHECK_THROWS_WITH(lathe_mesh(washer, 16, false), Catch::Contains("starts and ends on the axis"));
+  CHECK_THROWS_WITH(lathe_mesh(peg, 2, false), Catch::Contains("segments >= 3"));
+  CHECK_THROWS_WITH(prism_mesh(std::vector<PlanePoint>{{0, 0}, {1, 0}}, 0, 1),
+                    Catch::Contains("at least 3 corners"));
+  CHECK_THROWS_WITH(prism_mesh(cup, 1, 1), Catch::Contains("z0 < z1"));
+}
+
+TEST_CASE("interlocking rings: the hulls meet, the solids do not, the exact pieces agree",
+          "[unit][decomposition]") {
+  std::vector<PlanePoint> hexagon;
+  for (int k = 0; k < 6; ++k)
+    hexagon.push_back({1 + 0.2 * std::cos(M_PI * k / 3), 0.2 * std::sin(M_PI * k / 3)});
+  const TriangleMesh ring = lathe_mesh(hexagon, 8, true);
+  // The second ring stands in the plane y = 0, through the first one's hole.
+  TriangleMesh linked = ring;
+  for (Vec3& v : linked.vertices)
+    v = Vec3(v.x() + 1, v.z(), v.y());
+  for (MeshFace& f : linked.faces)  // swapping y and z mirrors the ring: turn its faces back
+    std::swap(f[1], f[2]);
+  REQUIRE_NOTHROW(exact::validate_closed_mesh(linked, "linked ring"));
+  const exact::MeshTruth truth = exact::mesh_truth(ring, linked);
+  REQUIRE_FALSE(truth.intersect);
+  CHECK(truth.distance > 0.4);
+  const auto& gjk = algorithm("gjk-johnson");
+  const experiment::AlgorithmOptions options;
+  const auto hull_a = experiment::piece_polytopes(decomposed("hull", ring));
+  const auto hull_b = experiment::piece_polytopes(decomposed("hull", linked));
+  CHECK(experiment::run_on_pieces(gjk, hull_a, hull_b, options).outcome.intersect);
+  const auto exact_a = experiment::piece_polytopes(decomposed("exact", ring));
+  const auto exact_b = experiment::piece_polytopes(decomposed("exact", linked));
+  const experiment::PieceOutcome p = experiment::run_on_pieces(gjk, exact_a, exact_b, options);
+  CHECK_FALSE(p.outcome.intersect);
+  CHECK(std::abs(*p.outcome.distance - truth.distance) <= 1e-9);
 }

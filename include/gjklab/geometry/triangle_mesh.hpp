@@ -1,10 +1,12 @@
-// A triangle mesh as plain data: vertex coordinates and faces of three vertex indices, and a
-// generated family of closed meshes (star_mesh). exact/closed_mesh.hpp reads and validates them.
+// A triangle mesh as plain data: vertex coordinates and faces of three vertex indices, and
+// generated closed meshes: stars, prisms and solids of revolution (star_mesh, prism_mesh,
+// lathe_mesh). exact/closed_mesh.hpp reads and validates them.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "gjklab/geometry/types.hpp"
@@ -30,5 +32,28 @@ struct TriangleMesh {
 /// non-convex star. Faces turn counter-clockwise seen from outside. radius is called once per
 /// vertex, north pole first, then ring by ring, south pole last. 2·segments·(rings − 1) faces.
 TriangleMesh star_mesh(int rings, int segments, const std::function<double(const Vec3&)>& radius);
+
+/// A point of a plane: a prism's polygon corner (x, y), a lathe profile's point (r, z).
+using PlanePoint = std::array<double, 2>;
+
+/// The prism over a polygon in the plane z = const, between heights z0 < z1. The polygon (at
+/// least 3 corners, counter-clockwise seen from +z, simple) must be star-shaped from its first
+/// corner: the fan of triangles from it is its top and bottom (an L, a T, any convex polygon).
+/// Throws std::invalid_argument for fewer than 3 corners, a non-finite value or z0 >= z1; the
+/// other conditions are the caller's (validate_closed_mesh checks the result).
+TriangleMesh prism_mesh(std::span<const PlanePoint> polygon, double z0, double z1);
+
+/// The solid swept by turning a profile in the half-plane (r, z), r >= 0, about the z axis, in
+/// `segments` (>= 3) steps (vertices at the angles 2πj/segments). The profile goes
+/// counter-clockwise around the region it bounds (the solid on its left):
+///  - ring: every point has r > 0, and the polygon is closed implicitly (last to first): a
+///    torus from a circle, a tube (a peg's hole) from a rectangle;
+///  - !ring: the first and last points lie on the axis (r = 0; each becomes one pole vertex)
+///    and the others have r > 0: a ball from a half circle, a peg from a rectangle's half, a cup
+///    from the half of its cross-section.
+/// Faces turn counter-clockwise seen from outside. Throws std::invalid_argument for a profile
+/// of too few points (ring: 3, else 3 with 1 off the axis), a non-finite value, or a point on
+/// the wrong side of the axis.
+TriangleMesh lathe_mesh(std::span<const PlanePoint> profile, int segments, bool ring);
 
 }  // namespace gjklab
