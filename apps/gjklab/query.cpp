@@ -1,28 +1,22 @@
 #include "gjklab/query.hpp"
-#include "gjklab/query_table.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <istream>
 #include <limits>
-#include <nlohmann/json.hpp>
-#include <optional>
 #include <ostream>
-#include <stdexcept>
 #include <thread>
-#include <type_traits>
 #include <variant>
 
 #include "gjklab/exact/closed_mesh.hpp"
-#include "gjklab/exact/hull_features.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/experiment/meshes/decompositions.hpp"
 #include "gjklab/experiment/meshes/mesh_query.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
-#include "gjklab/experiment/registry/answer_fields.hpp"
+#include "gjklab/query_answers.hpp"
+#include "gjklab/query_table.hpp"
 
 namespace gjklab::cli {
 
@@ -32,113 +26,6 @@ using experiment::AlgorithmInfo;
 using experiment::CaseError;
 using experiment::CaseOrError;
 using experiment::PointCase;
-using Json = nlohmann::ordered_json;
-
-/// A field's value as JSON: a point or direction as [x, y, z].
-Json json_of(const experiment::AnswerValue& v) {
-  return std::visit(
-      [](const auto& x) -> Json {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Vec3>)
-          return Json::array({x.x(), x.y(), x.z()});
-        else
-          return Json(x);
-      },
-      v);
-}
-
-/// The JSON line of one answer for one case: its id, then the fields.
-std::string fields_line(const std::string& id, const experiment::AnswerFields& fields) {
-  Json j;
-  j["id"] = id;
-  for (const auto& [key, value] : fields)
-    j[key] = json_of(value);
-  return experiment::json_line(j);
-}
-
-/// The JSON line of one algorithm's answer for one case: its id, then answer_fields.
-std::string answer_line(const PointCase& c, const AlgorithmInfo& algorithm,
-                        const experiment::Outcome& o, ScalarPrecision precision) {
-  return fields_line(
-      c.id, experiment::answer_fields(algorithm.name, o, precision, c.radius_a, c.radius_b));
-}
-
-std::string error_line(const std::string& id, const std::string& problem,
-                       const AlgorithmInfo* algorithm = nullptr) {
-  Json j;
-  j["id"] = id;
-  if (algorithm) j["algorithm"] = algorithm->name;
-  j["error"] = problem;
-  return experiment::json_line(j);
-}
-
-/// A side of a non-convex case: its mesh, or the boundary of a point cloud's hull.
-experiment::MeshSide mesh_side(const std::optional<TriangleMesh>& mesh,
-                               const std::vector<Vec3>& cloud) {
-  return {mesh ? *mesh : exact::hull_mesh(cloud), std::nullopt, {}};
-}
-
-/// Every selected algorithm on a case with a mesh side: `exact` answers the solids, the others
-/// the pieces of the decomposition (one error line each when a side cannot be decomposed).
-std::vector<std::string> answer_mesh_case(const PointCase& c,
-                                          const std::vector<const AlgorithmInfo*>& selected,
-                                          const experiment::DecompositionInfo& decomposition,
-                                          const experiment::AlgorithmOptions& options) {
-  std::vector<std::string> lines;
-  std::optional<experiment::MeshSide> a, b;
-  try {
-    a = mesh_side(c.mesh_a, c.a);
-    b = mesh_side(c.mesh_b, c.b);
-  } catch (const std::exception& e) {
-    return {error_line(c.id, std::string(a ? "side b: " : "side a: ") + e.what())};
-  }
-  const bool convex = std::any_of(selected.begin(), selected.end(), [](const AlgorithmInfo* x) {
-    return x->kind != experiment::AnswerKind::exact;
-  });
-  std::string not_decomposed;
-  try {
-    if (convex) {
-      experiment::decompose_side(*a, decomposition, "case '" + c.id + "' side a", {});
-      experiment::decompose_side(*b, decomposition, "case '" + c.id + "' side b", {});
-    }
-  } catch (const std::exception& e) {
-    not_decomposed = e.what();
-  }
-  for (const AlgorithmInfo* algorithm : selected) {
-    try {
-      if (algorithm->kind != experiment::AnswerKind::exact && !not_decomposed.empty())
-        throw std::runtime_error(not_decomposed);
-      lines.push_back(
-          fields_line(c.id, experiment::mesh_answer_fields(*algorithm, *a, *b, options)));
-    } catch (const std::exception& e) {
-      lines.push_back(error_line(c.id, e.what(), algorithm));
-    }
-  }
-  return lines;
-}
-
-/// Every selected algorithm on one valid case: one output line each. Unless the algorithms
-/// were named, those that answer for polytopes only skip sphere-swept cases.
-std::vector<std::string> answer_case(const PointCase& c,
-                                     const std::vector<const AlgorithmInfo*>& selected, bool named,
-                                     const experiment::AlgorithmOptions& options) {
-  std::vector<std::string> lines;
-  const Polytope a(c.a), b(c.b);
-  const SweptRadii radii{c.radius_a, c.radius_b};
-  const bool other_precision = options.precision != ScalarPrecision::double_float;
-  for (const AlgorithmInfo* algorithm : selected) {
-    if (!named && !experiment::handles(*algorithm, radii)) continue;
-    if (!named && other_precision && !experiment::takes_precision(*algorithm)) continue;
-    try {
-      lines.push_back(
-          answer_line(c, *algorithm, experiment::run_algorithm(*algorithm, a, b, radii, options),
-                      experiment::takes_precision(*algorithm) ? options.precision
-                                                              : ScalarPrecision::double_float));
-    } catch (const std::exception& e) {
-      lines.push_back(error_line(c.id, e.what(), algorithm));
-    }
-  }
-  return lines;
-}
 
 /// Cases from the two point files or the cases file; file-level problems become CaseErrors.
 std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std::string& source) {
@@ -250,27 +137,35 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
            "\"radius_a\" and \"radius_b\" on each line\n";
     return 2;
   }
-  std::vector<const AlgorithmInfo*> selected;
+  QueryAsked asked;
+  asked.named = !args.algorithms.empty();
   if (args.algorithms.empty()) {
     // All but `sat`: its cost grows with the cube of the vertex count, so on a large cloud it
     // would run for hours; it answers when named.
     for (const AlgorithmInfo& a : experiment::algorithms())
-      if (a.name != "sat") selected.push_back(&a);
+      if (a.name != "sat") asked.algorithms.push_back(&a);
+    for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
+      asked.mesh_peers.push_back(&p);
   }
   for (const std::string& name : args.algorithms) {
-    const AlgorithmInfo* a = experiment::find_algorithm(name);
-    if (!a) {
+    if (const AlgorithmInfo* a = experiment::find_algorithm(name)) {
+      asked.algorithms.push_back(a);
+    } else if (const experiment::MeshPeerInfo* p = experiment::find_mesh_peer(name)) {
+      asked.mesh_peers.push_back(p);
+    } else {
       err << "gjklab query: unknown algorithm '" << name
-          << "'; valid names: " << experiment::algorithm_names() << "\n";
+          << "'; valid names: " << experiment::algorithm_names();
+      for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
+        err << ", " << p.name << " (meshes only)";
+      err << "\n";
       return 2;
     }
-    selected.push_back(a);
   }
-  experiment::AlgorithmOptions options;
+  experiment::AlgorithmOptions& options = asked.options;
   if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
   options.oracle.depth = args.depth;
   options.precision = *precision_from_string(args.precision);  // checked by the parser
-  const experiment::DecompositionInfo& decomposition = experiment::decomposition_named(
+  asked.decomposition = &experiment::decomposition_named(
       args.decomposition.empty() ? "hull" : args.decomposition);  // checked by the parser
 
   std::string source;
@@ -279,11 +174,7 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < cases.size(); i = next++) {
-      const auto* c = std::get_if<PointCase>(&cases[i]);
-      if (c && (c->mesh_a || c->mesh_b))
-        lines[i] = answer_mesh_case(*c, selected, decomposition, options);
-      else if (c)
-        lines[i] = answer_case(*c, selected, !args.algorithms.empty(), options);
+      if (const auto* c = std::get_if<PointCase>(&cases[i])) lines[i] = answer_lines(*c, asked);
     }
   };
   std::vector<std::thread> pool;

@@ -139,3 +139,36 @@ TEST_CASE("query two mesh files with --decomposition: pieces for GJK, the solids
   const auto swept = run_cli({"query", l, other, "--decomposition", "hull", "--radius-a", "1"});
   CHECK(swept.status == 2);
 }
+
+#ifdef GJKLAB_HAVE_FCL
+TEST_CASE("query: fcl-bvh answers a mesh case, and says why not for two point clouds",
+          "[unit][query][decomposition]") {
+  const std::string input =
+      Json{{"id", "notch"}, {"a", l_prism()}, {"b", notch_box()}}.dump() + "\n" +
+      Json{{"id", "clouds"}, {"a", notch_box()}, {"b", notch_box()}}.dump() + "\n";
+  const auto r = run_cli({"query", "--cases", "-", "--algorithms", "fcl-bvh"}, input);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto lines = lines_of(r.out);
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0]["algorithm"] == "fcl-bvh");
+  CHECK(lines[0]["intersect"] == false);
+  CHECK(lines[0]["distance"].get<double>() == Approx(0.25).margin(1e-12));
+  CHECK(lines[1]["algorithm"] == "fcl-bvh");
+  CHECK(lines[1]["error"] == "answers for two meshes only");
+  const auto unknown = run_cli({"query", "--cases", "-", "--algorithms", "fcl-nope"}, input);
+  CHECK(unknown.status == 2);
+  CHECK_THAT(unknown.err, Catch::Contains("fcl-bvh (meshes only)"));
+}
+#endif
+
+TEST_CASE("query --cases: a flat point cloud beside a mesh is refused, naming the side",
+          "[unit][query][decomposition]") {
+  const Json flat = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}};
+  const auto r = run_cli({"query", "--cases", "-", "--algorithms", "exact"},
+                         Json{{"id", "flat"}, {"a", l_prism()}, {"b", flat}}.dump() + "\n");
+  const auto lines = lines_of(r.out);
+  REQUIRE(lines.size() == 1);
+  CHECK_THAT(lines[0]["error"].get<std::string>(),
+             Catch::Contains("side b: the point cloud spans 2 dimensions; a solid needs 3"));
+}

@@ -1,11 +1,15 @@
 #include "gjklab/experiment/meshes/mesh_query.hpp"
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/experiment/meshes/piece_query.hpp"
+#ifdef GJKLAB_HAVE_FCL
+#include "gjklab/peers/fcl_mesh.hpp"
+#endif
 
 namespace gjklab::experiment {
 
@@ -51,7 +55,49 @@ AnswerFields piece_fields(const AlgorithmInfo& algorithm, const MeshSide& a, con
   return f;
 }
 
+#ifdef GJKLAB_HAVE_FCL
+/// FCL's collide decides intersect; its distance query gives the distance and witnesses.
+AnswerFields fcl_bvh(const TriangleMesh& a, const TriangleMesh& b) {
+  const peers::FclMesh ma(a), mb(b);
+  const peers::FclMeshAnswer collide = peers::fcl_mesh_collide(ma, mb);
+  const peers::FclMeshAnswer distance = peers::fcl_mesh_distance(ma, mb);
+  AnswerFields f;
+  f.emplace_back("algorithm", std::string("fcl-bvh"));
+  f.emplace_back("intersect", collide.intersect);
+  if (distance.distance) f.emplace_back("distance", *distance.distance);
+  if (distance.witness_a && distance.witness_b) {
+    f.emplace_back("witness_a", *distance.witness_a);
+    f.emplace_back("witness_b", *distance.witness_b);
+  }
+  const peers::FclMeshAnswer& decided = collide.intersect ? collide : distance;
+  if (decided.face_a >= 0) {
+    f.emplace_back("face_a", decided.face_a);
+    f.emplace_back("face_b", decided.face_b);
+  }
+  return f;
+}
+
+constexpr std::array kMeshPeers = {
+    MeshPeerInfo{"fcl-bvh",
+                 "FCL's BVHModel<OBBRSS> collide and distance on the two meshes (triangles, not "
+                 "solids: a mesh inside the other does not intersect)",
+                 fcl_bvh},
+};
+#else
+constexpr std::array<MeshPeerInfo, 0> kMeshPeers = {};
+#endif
+
 }  // namespace
+
+std::span<const MeshPeerInfo> mesh_peers() {
+  return kMeshPeers;
+}
+
+const MeshPeerInfo* find_mesh_peer(std::string_view name) {
+  for (const MeshPeerInfo& p : mesh_peers())
+    if (p.name == name) return &p;
+  return nullptr;
+}
 
 void decompose_side(MeshSide& side, const DecompositionInfo& decomposition, std::string_view source,
                     const DecompositionOptions& options) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -35,5 +36,20 @@ void decompose_side(MeshSide& side, const DecompositionInfo& decomposition, std:
 /// piece_pairs, piece_pairs_tested and the deciding pieces; both sides must be decomposed.
 AnswerFields mesh_answer_fields(const AlgorithmInfo& algorithm, const MeshSide& a,
                                 const MeshSide& b, const AlgorithmOptions& options);
+
+/// A peer that answers for two meshes themselves, not for convex pieces: FCL's BVHModel
+/// (`fcl-bvh`, when FCL was built), what robotics code queries non-convex meshes with.
+struct MeshPeerInfo {
+  std::string_view name;
+  std::string_view description;
+  /// The answer fields: algorithm, intersect, distance, witnesses where there are, and the
+  /// deciding faces.
+  AnswerFields (*run)(const TriangleMesh& a, const TriangleMesh& b);
+};
+
+/// Every mesh peer built into this binary.
+std::span<const MeshPeerInfo> mesh_peers();
+/// The mesh peer of that name, or nullptr.
+const MeshPeerInfo* find_mesh_peer(std::string_view name);
 
 }  // namespace gjklab::experiment
