@@ -92,6 +92,24 @@ std::vector<PlanePoint> plane_points(const py::handle& object, const char* name)
   return out;
 }
 
+/// A decomposition's options from Python values (numbers, booleans), by their text.
+experiment::DecompositionOptions decomposition_options_of(const experiment::DecompositionInfo& d,
+                                                          const py::dict& values) {
+  experiment::DecompositionOptions out;
+  for (const auto& [key, value] : values) {
+    const std::string text = py::isinstance<py::bool_>(value)
+                                 ? (value.cast<bool>() ? "true" : "false")
+                                 : py::str(value).cast<std::string>();
+    experiment::set_decomposition_option(d, out, py::str(key).cast<std::string>(), text);
+  }
+  return out;
+}
+
+experiment::DecompositionOptions decomposition_options(const experiment::DecompositionInfo& d,
+                                                       const py::kwargs& values) {
+  return decomposition_options_of(d, py::dict(values));
+}
+
 py::dict truth_dict(const exact::MeshTruth& t) {
   py::dict d;
   d["intersect"] = t.intersect;
@@ -129,11 +147,12 @@ rounded), face_a and face_b (the triangles that meet or attain the distance; -1 
 containment), and the exact evaluations the answer took.)");
   m.def(
       "decompose",
-      [](const py::handle& mesh, const std::string& method) {
+      [](const py::handle& mesh, const std::string& method, const py::kwargs& options) {
         const TriangleMesh closed = mesh_of(mesh, "a");
         experiment::Decomposition d;
         try {
-          d = experiment::decomposition_named(method).decompose(closed, "mesh", {});
+          const auto& chosen = experiment::decomposition_named(method);
+          d = chosen.decompose(closed, "mesh", decomposition_options(chosen, options));
         } catch (const std::exception& e) {
           throw py::value_error(e.what());
         }
@@ -160,11 +179,13 @@ proven equal to the solid; at most 2 000 faces) or 'approximate' (Bullet's HACD 
 parameters, when built). Returns a dict: method, pieces (a list of k×3 float64 arrays, each
 piece the convex hull of its rows), proven (the union is proven to be the solid) and
 max_rounding (how far rounding the exact pieces' corners to doubles moved them, length units).
-Raises ValueError when the mesh is bad or the decomposition fails, saying why.)");
+Keyword arguments are the decomposition's options (approximate: HACD's parameters, e.g.
+concavity=50, min_clusters=4). Raises ValueError when the mesh is bad or the decomposition fails, saying why.)");
   m.def(
       "query_mesh",
       [](const py::handle& a, const py::handle& b, const py::handle& algorithm,
-         const std::string& decomposition, const py::kwargs& options) -> py::object {
+         const std::string& decomposition, const py::dict& decomposition_options,
+         const py::kwargs& options) -> py::object {
         const bool one = py::isinstance<py::str>(algorithm);
         const auto names = one ? std::vector<std::string>{algorithm.cast<std::string>()}
                                : algorithm.cast<std::vector<std::string>>();
@@ -177,8 +198,9 @@ Raises ValueError when the mesh is bad or the decomposition fails, saying why.)"
           try {
             const auto& chosen = experiment::decomposition_named(decomposition);
             if (info.kind != experiment::AnswerKind::exact) {
-              experiment::decompose_side(sa, chosen, "mesh a", {});
-              experiment::decompose_side(sb, chosen, "mesh b", {});
+              const auto set = decomposition_options_of(chosen, decomposition_options);
+              experiment::decompose_side(sa, chosen, "mesh a", set);
+              experiment::decompose_side(sb, chosen, "mesh b", set);
             }
             answers.append(fields_dict(experiment::mesh_answer_fields(info, sa, sb, spec.options)));
           } catch (const std::exception& e) {
@@ -188,12 +210,13 @@ Raises ValueError when the mesh is bad or the decomposition fails, saying why.)"
         return one ? answers[0] : py::object(answers);
       },
       py::arg("a"), py::arg("b"), py::arg("algorithm") = "gjk-johnson",
-      py::arg("decomposition") = "hull",
+      py::arg("decomposition") = "hull", py::arg("decomposition_options") = py::dict(),
       R"(An algorithm's answer for two closed meshes (file paths or (vertices, faces)), as
 `gjklab query` prints it: 'exact' answers the solids (mesh truth); any other algorithm runs over
 the pairs of pieces of the named decomposition and its answer says which, with pieces_a,
 pieces_b, piece_pairs and piece_pairs_tested. With a list of algorithm names, a list of
-answers (the meshes decomposed once). Keyword arguments are the algorithms' options.)");
+answers (the meshes decomposed once). decomposition_options: a dict of the decomposition's
+options (as gjklab.decompose takes them). Keyword arguments are the algorithms' options.)");
   m.def(
       "prism_mesh",
       [](const py::handle& polygon, double z0, double z1) {

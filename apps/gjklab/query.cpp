@@ -7,6 +7,8 @@
 #include <istream>
 #include <limits>
 #include <ostream>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <variant>
 
@@ -98,6 +100,9 @@ CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
                       "), `exact` the solids; in a cases file, the decomposition of the mesh "
                       "sides (default hull)")
       ->check(CLI::IsMember(decompositions));
+  cmd->add_option("--decomposition-option", args.decomposition_options,
+                  "KEY=VALUE: an option of the decomposition (repeatable; `approximate`: HACD's "
+                  "parameters, e.g. concavity=50)");
   cmd->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   cmd->add_flag("--depth", args.depth, "exact penetration depth for intersecting pairs (slow)");
   cmd->add_option("--radius-a", args.radius_a,
@@ -154,10 +159,11 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
       asked.mesh_peers.push_back(p);
     } else {
       err << "gjklab query: unknown algorithm '" << name
-          << "'; valid names: " << experiment::algorithm_names();
+          << "'; valid names: " << experiment::algorithm_names() << "\n";
+      std::string peers;
       for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
-        err << ", " << p.name << " (meshes only)";
-      err << "\n";
+        peers += (peers.empty() ? "" : ", ") + std::string(p.name);
+      if (!peers.empty()) err << "gjklab query: mesh cases also take: " << peers << "\n";
       return 2;
     }
   }
@@ -167,6 +173,18 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
   options.precision = *precision_from_string(args.precision);  // checked by the parser
   asked.decomposition = &experiment::decomposition_named(
       args.decomposition.empty() ? "hull" : args.decomposition);  // checked by the parser
+  for (const std::string& option : args.decomposition_options) {
+    const std::size_t equals = option.find('=');
+    try {
+      if (equals == std::string::npos)
+        throw std::invalid_argument("--decomposition-option '" + option + "': expected KEY=VALUE");
+      experiment::set_decomposition_option(*asked.decomposition, asked.decomposition_options,
+                                           option.substr(0, equals), option.substr(equals + 1));
+    } catch (const std::invalid_argument& e) {
+      err << "gjklab query: " << e.what() << "\n";
+      return 2;
+    }
+  }
 
   std::string source;
   const std::vector<CaseOrError> cases = load_cases(args, in, source);

@@ -28,6 +28,8 @@ struct QueryArgs {
   /// its pieces (a cases file: the decomposition of its mesh sides). Empty: the files are point
   /// clouds, and mesh sides of a cases file use `hull`.
   std::string decomposition;
+  /// The decomposition's options, KEY=VALUE each (e.g. concavity=50 for `approximate`).
+  std::vector<std::string> decomposition_options;
 };
 
 /// Registers the `query` subcommand and its options on app.

@@ -82,8 +82,10 @@ std::vector<std::string> answer_mesh_case(const PointCase& c, const QueryAsked& 
   std::string not_decomposed;
   try {
     if (convex) {
-      experiment::decompose_side(*a, decomposition, "case '" + c.id + "' side a", {});
-      experiment::decompose_side(*b, decomposition, "case '" + c.id + "' side b", {});
+      experiment::decompose_side(*a, decomposition, "case '" + c.id + "' side a",
+                                 asked.decomposition_options);
+      experiment::decompose_side(*b, decomposition, "case '" + c.id + "' side b",
+                                 asked.decomposition_options);
     }
   } catch (const std::exception& e) {
     not_decomposed = e.what();

@@ -21,6 +21,7 @@ struct QueryAsked {
   bool named = false;
   /// The pieces the convex algorithms see of a mesh side.
   const experiment::DecompositionInfo* decomposition = nullptr;
+  experiment::DecompositionOptions decomposition_options;
   experiment::AlgorithmOptions options;
 };
 

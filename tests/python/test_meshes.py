@@ -110,3 +110,17 @@ def test_query_mesh_hull_false_positive_and_exact_pieces():
     assert not pieces["intersect"]
     assert pieces["distance"] == pytest.approx(0.25, abs=1e-12)
     assert pieces["pieces_a"] >= 2 and pieces["piece_pairs_tested"] >= 1
+
+
+def test_decompose_options_are_checked_and_reach_hacd():
+    with pytest.raises(ValueError, match="takes no option 'concavity'"):
+        gjklab.decompose(l_prism(), "exact", concavity=5)
+    try:
+        default = gjklab.decompose(l_prism(), "approximate")
+    except ValueError as e:
+        assert "unknown decomposition" in str(e)  # built without HACD
+        return
+    one = gjklab.decompose(l_prism(), "approximate", min_clusters=1)
+    assert len(one["pieces"]) < len(default["pieces"])
+    with pytest.raises(ValueError, match="min_clusters"):
+        gjklab.decompose(l_prism(), "approximate", min_clusters=0)

@@ -313,3 +313,36 @@ TEST_CASE("interlocking rings: the hulls meet, the solids do not, the exact piec
   CHECK_FALSE(p.outcome.intersect);
   CHECK(std::abs(*p.outcome.distance - truth.distance) <= 1e-9);
 }
+
+TEST_CASE("decomposition options: set by key from text, refused by name, range and form",
+          "[unit][decomposition]") {
+  experiment::DecompositionOptions options;
+  const auto& exact_info = experiment::decomposition_named("exact");
+  CHECK_THROWS_WITH(
+      experiment::set_decomposition_option(exact_info, options, "concavity", "50"),
+      Catch::Contains("decomposition 'exact' takes no option 'concavity'; it takes none"));
+#ifdef GJKLAB_HAVE_HACD
+  const auto& approximate = experiment::decomposition_named("approximate");
+  experiment::set_decomposition_option(approximate, options, "concavity", "50");
+  experiment::set_decomposition_option(approximate, options, "min_clusters", "3");
+  experiment::set_decomposition_option(approximate, options, "add_faces_points", "true");
+  CHECK(options.hacd.concavity == 50);
+  CHECK(options.hacd.min_clusters == 3);
+  CHECK(options.hacd.add_faces_points);
+  CHECK_THROWS_WITH(
+      experiment::set_decomposition_option(approximate, options, "min_clusters", "2.5"),
+      Catch::Contains("option 'min_clusters': cannot read '2.5'"));
+  CHECK_THROWS_WITH(experiment::set_decomposition_option(approximate, options, "concavity", "nan"),
+                    Catch::Contains("cannot read 'nan'"));
+  CHECK_THROWS_AS(experiment::set_decomposition_option(approximate, options, "min_clusters", "0"),
+                  std::invalid_argument);
+  CHECK_THROWS_WITH(experiment::set_decomposition_option(approximate, options, "clusters", "3"),
+                    Catch::Contains("its options: min_clusters, concavity"));
+  // The options reach HACD: merging stops at min_clusters (2 by default), and the L's
+  // concavity as HACD measures it at the vertices is 0, so with 1 it merges into one piece.
+  experiment::DecompositionOptions one;
+  experiment::set_decomposition_option(approximate, one, "min_clusters", "1");
+  CHECK(approximate.decompose(l_prism(), "L", one).pieces.size() <
+        approximate.decompose(l_prism(), "L", {}).pieces.size());
+#endif
+}

@@ -13,6 +13,8 @@
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/hunt/hunt.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/mesh_query.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 
@@ -148,6 +150,18 @@ TEST_CASE("names lists the shapes, contacts, placements, hunt objectives and ben
   for (const nlohmann::json& o : doc["hunt_objectives"])
     CHECK_FALSE(o["meaning"].get<std::string>().empty());
   CHECK(names_of(doc["bench_suites"]) == bench::all_suites());
+  std::vector<std::string> decompositions;
+  for (const DecompositionInfo& d : experiment::decompositions())
+    decompositions.emplace_back(d.name);
+  CHECK(names_of(doc["decompositions"]) == decompositions);
+  CHECK(decompositions.size() >= 2);
+  for (const nlohmann::json& d : doc["decompositions"])
+    for (const nlohmann::json& o : d["options"])
+      CHECK_FALSE(o["meaning"].get<std::string>().empty());
+  std::vector<std::string> peers;
+  for (const MeshPeerInfo& p : experiment::mesh_peers())
+    peers.emplace_back(p.name);
+  CHECK(names_of(doc["mesh_peers"]) == peers);
 }
 
 TEST_CASE("names without --json: one line per algorithm and one per other table", "[unit][names]") {
@@ -158,4 +172,5 @@ TEST_CASE("names without --json: one line per algorithm and one per other table"
   CHECK(r.out.find("max_iterations=128") != std::string::npos);  // gjk-johnson's default
   CHECK(r.out.find("\nhunt_objectives: wrong_boolean, ") != std::string::npos);
   CHECK(r.out.find("\nbench_suites: seed, random, scene\n") != std::string::npos);
+  CHECK(r.out.find("\ndecompositions: hull, exact") != std::string::npos);
 }

@@ -158,7 +158,7 @@ TEST_CASE("query: fcl-bvh answers a mesh case, and says why not for two point cl
   CHECK(lines[1]["error"] == "answers for two meshes only");
   const auto unknown = run_cli({"query", "--cases", "-", "--algorithms", "fcl-nope"}, input);
   CHECK(unknown.status == 2);
-  CHECK_THAT(unknown.err, Catch::Contains("fcl-bvh (meshes only)"));
+  CHECK_THAT(unknown.err, Catch::Contains("\ngjklab query: mesh cases also take: fcl-bvh\n"));
 }
 #endif
 
@@ -171,4 +171,18 @@ TEST_CASE("query --cases: a flat point cloud beside a mesh is refused, naming th
   REQUIRE(lines.size() == 1);
   CHECK_THAT(lines[0]["error"].get<std::string>(),
              Catch::Contains("side b: the point cloud spans 2 dimensions; a solid needs 3"));
+}
+
+TEST_CASE("query --decomposition-option: KEY=VALUE checked before any case runs",
+          "[unit][query][decomposition]") {
+  const std::string line =
+      Json{{"id", "notch"}, {"a", l_prism()}, {"b", notch_box()}}.dump() + "\n";
+  auto r = run_cli({"query", "--cases", "-", "--decomposition", "exact", "--decomposition-option",
+                    "concavity=5"},
+                   line);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("decomposition 'exact' takes no option 'concavity'"));
+  r = run_cli({"query", "--cases", "-", "--decomposition-option", "concavity"}, line);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("expected KEY=VALUE"));
 }

@@ -9,6 +9,8 @@
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/hunt/hunt.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/mesh_query.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 
@@ -104,6 +106,26 @@ Json objective_list() {
   return list;
 }
 
+/// The decompositions of closed meshes, with their options, and the peers that answer for two
+/// meshes themselves.
+Json decomposition_list() {
+  Json list = Json::array();
+  for (const DecompositionInfo& d : decompositions()) {
+    Json options = Json::array();
+    for (const DecompositionOptionRow& row : d.options)
+      options.push_back({{"key", row.key}, {"meaning", row.meaning}});
+    list.push_back({{"name", d.name}, {"description", d.description}, {"options", options}});
+  }
+  return list;
+}
+
+Json mesh_peer_list() {
+  Json list = Json::array();
+  for (const MeshPeerInfo& p : mesh_peers())
+    list.push_back({{"name", p.name}, {"description", p.description}});
+  return list;
+}
+
 }  // namespace
 
 nlohmann::ordered_json names_document() {
@@ -114,6 +136,8 @@ nlohmann::ordered_json names_document() {
   doc["placements"] = placement_list();
   doc["hunt_objectives"] = objective_list();
   doc["bench_suites"] = bench::all_suites();
+  doc["decompositions"] = decomposition_list();
+  doc["mesh_peers"] = mesh_peer_list();
   return doc;
 }
 

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "gjklab/geometry/polytope.hpp"
@@ -39,9 +40,20 @@ struct Decomposition {
   double max_rounding = 0;
 };
 
+/// One option of a decomposition, as data: its key, what it means (with its unit), and the
+/// member it sets.
+struct DecompositionOptionRow {
+  std::string_view key;
+  std::string_view meaning;
+  std::variant<int peers::HacdOptions::*, double peers::HacdOptions::*, bool peers::HacdOptions::*>
+      member;
+};
+
 struct DecompositionInfo {
   std::string_view name;
   std::string_view description;
+  /// The options it takes (none for hull and exact).
+  std::span<const DecompositionOptionRow> options;
   /// Decomposes a validated closed mesh; `source` names it in errors. Throws std::runtime_error
   /// (exact::DecompositionError for `exact`) when it cannot.
   Decomposition (*decompose)(const TriangleMesh& mesh, std::string_view source,
@@ -54,6 +66,12 @@ std::span<const DecompositionInfo> decompositions();
 const DecompositionInfo& decomposition_named(std::string_view name);
 /// The valid names, comma-separated.
 std::string decomposition_names();
+
+/// Sets the option `key` of decomposition `d` from its text (an integer, a finite number, or
+/// true/false), then checks the options' ranges. Throws std::invalid_argument naming the key:
+/// unknown to `d` (listing its keys), unreadable, or out of range.
+void set_decomposition_option(const DecompositionInfo& d, DecompositionOptions& options,
+                              std::string_view key, std::string_view value);
 
 /// The pieces as polytopes, for the queries.
 std::vector<Polytope> piece_polytopes(const Decomposition& d);

@@ -15,7 +15,9 @@ namespace gjklab::experiment {
 ///                    "options": [{"key", "type", "default", "accepts", "choices"?,
 ///                                 "meaning", "settable"}]}],
 ///    "shapes": [{"name", "description"}], "contacts": [...], "placements": [...],
-///    "hunt_objectives": [{"name", "meaning"}], "bench_suites": [...]}
+///    "hunt_objectives": [{"name", "meaning"}], "bench_suites": [...],
+///    "decompositions": [{"name", "description", "options": [{"key", "meaning"}]}],
+///    "mesh_peers": [{"name", "description"}]}
 /// Keys keep this order (ordered_json), so the text reads as documented.
 nlohmann::ordered_json names_document();
 
