@@ -23,26 +23,9 @@ using experiment::Decomposition;
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
-/// The prism over a polygon (counter-clockwise seen from +z, star-shaped from its first corner,
-/// so that its fan from there triangulates it) between heights z0 < z1: a closed mesh.
-TriangleMesh prism(const std::vector<Vec2>& polygon, double z0, double z1) {
-  TriangleMesh m;
-  const auto n = static_cast<std::uint32_t>(polygon.size());
-  for (const double z : {z0, z1})
-    for (const Vec2& p : polygon)
-      m.vertices.emplace_back(p.x(), p.y(), z);
-  for (std::uint32_t k = 1; k + 1 < n; ++k) {
-    m.faces.push_back({0, k + 1, k});          // bottom, seen from −z
-    m.faces.push_back({n, n + k, n + k + 1});  // top
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    m.faces.push_back({i, j, n + j});
-    m.faces.push_back({i, n + j, n + i});
-  }
-  return m;
+/// The prism over a polygon (gjklab::prism_mesh).
+TriangleMesh prism(const std::vector<PlanePoint>& polygon, double z0, double z1) {
+  return prism_mesh(polygon, z0, z1);
 }
 
 /// An L: the unit square's 2 × 1 bar along x and 1 × 1 arm up y, one unit thick.
