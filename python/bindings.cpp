@@ -455,6 +455,10 @@ answer was obtained (method: 'certified' or 'qp').)");
   m.def("families", &families, "Every shape a [[family]] of an experiment can name");
   m.def("real_objects", &experiment::real_object_names,
         "Names of the real objects (Debian package libcgal-demo), for shape = \"real_object\"");
+  m.def(
+      "real_object_folder", [] { return experiment::real_object_meshes().string(); },
+      "The folder of the real objects' mesh files (extracted from the package's archive on "
+      "first use), to read them with their faces (read_closed_mesh)");
   m.def("run", &run, py::arg("experiment"), py::kw_only(), py::arg("out") = py::none(),
         py::arg("threads") = py::none(), py::arg("cases") = py::none(), py::arg("force") = false,
         py::arg("progress") = false,

@@ -8,6 +8,7 @@ The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` comm
     algorithms()                                      every algorithm, its options and defaults
     families()                                        every shape an experiment's family can name
     real_objects()                                    names for shape = "real_object"
+    real_object_folder()                              the folder of their mesh files
     read_points(path)                                 a point or mesh file as an n x 3 array
     read_closed_mesh(path)                            a closed triangle mesh: (vertices, faces)
     exact_mesh(a, b)                                  the exact answer for two closed meshes' solids
@@ -37,6 +38,7 @@ from ._gjklab import (
     query_mesh,
     read_closed_mesh,
     read_points,
+    real_object_folder,
     real_objects,
     run,
 )
@@ -65,6 +67,7 @@ __all__ = [
     "read_archive",
     "read_closed_mesh",
     "read_points",
+    "real_object_folder",
     "real_objects",
     "run",
 ]
