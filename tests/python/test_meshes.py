@@ -1,6 +1,7 @@
 """Closed meshes in Python: gjklab.read_closed_mesh and the exact truth for two solids,
 gjklab.exact_mesh, against answers known in exact arithmetic."""
 
+import os
 from fractions import Fraction
 
 import numpy as np
@@ -124,3 +125,13 @@ def test_decompose_options_are_checked_and_reach_hacd():
     assert len(one["pieces"]) < len(default["pieces"])
     with pytest.raises(ValueError, match="min_clusters"):
         gjklab.decompose(l_prism(), "approximate", min_clusters=0)
+
+
+def test_real_object_folder_holds_the_packaged_meshes_with_faces():
+    folder = gjklab.real_object_folder()
+    names = gjklab.real_objects()
+    assert "cube" in names
+    vertices, faces = gjklab.read_closed_mesh(os.path.join(folder, "cube.off"))
+    assert faces.shape == (12, 3)
+    d = gjklab.decompose((vertices, faces), "exact")
+    assert len(d["pieces"]) == 1 and d["proven"]
