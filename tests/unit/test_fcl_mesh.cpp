@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../support/posed_mesh.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/geometry/triangle_mesh.hpp"
 #include "gjklab/peers/fcl_mesh.hpp"
@@ -34,15 +35,7 @@ Mesh star(int rings, int segments, double lo, std::mt19937& rng) {
   return star_mesh(rings, segments, [&](const Vec3&) { return lo < 1 ? radius(rng) : 1.0; });
 }
 
-/// The mesh scaled, rotated about an axis and moved (vertices rounded to doubles: the mesh as
-/// given is what both sides answer for).
-Mesh posed(const Mesh& m, double scale, const Vec3& axis, double angle, const Vec3& shift) {
-  const Mat3 r = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-  Mesh out = m;
-  for (Vec3& v : out.vertices)
-    v = scale * (r * v) + shift;
-  return out;
-}
+using gjklab::testing::posed;
 
 /// One face of a mesh as a mesh of one triangle (mesh_truth then answers for that triangle).
 Mesh single_face(const Mesh& m, std::int64_t face) {

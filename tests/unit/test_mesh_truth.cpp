@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../support/brute_force_oracle.hpp"
+#include "../support/posed_mesh.hpp"
 #include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/hull_features.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
@@ -38,15 +39,7 @@ Mesh star_mesh(int rings, int segments, double lo, std::mt19937_64& rng) {
                            [&](const Vec3&) { return lo < 1 ? radius(rng) : 1.0; });
 }
 
-/// The mesh rotated about an axis, scaled and moved (vertices rounded to doubles: the mesh as
-/// given is what both sides answer for).
-Mesh posed(const Mesh& m, double scale, const Vec3& axis, double angle, const Vec3& shift) {
-  const Mat3 r = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-  Mesh out = m;
-  for (Vec3& v : out.vertices)
-    v = scale * (r * v) + shift;
-  return out;
-}
+using gjklab::testing::posed;
 
 /// The exact convex hull of a cloud as a closed mesh (its faces fanned into triangles): the
 /// solid is exactly the hull, whatever the rounding of the points.
