@@ -74,6 +74,78 @@ std::vector<CaseOrError> load_cases(const QueryArgs& args, std::istream& in, std
   }
 }
 
+/// What every case is asked, from the options: the algorithms and mesh peers by name (an
+/// unknown name is a usage error, reported on err), their options and the decomposition with
+/// its options. nullopt after a usage error.
+std::optional<QueryAsked> asked_of(const QueryArgs& args, std::ostream& err) {
+  QueryAsked asked;
+  asked.named = !args.algorithms.empty();
+  if (args.algorithms.empty()) {
+    // All but `sat`: its cost grows with the cube of the vertex count, so on a large cloud it
+    // would run for hours; it answers when named.
+    for (const AlgorithmInfo& a : experiment::algorithms())
+      if (a.name != "sat") asked.algorithms.push_back(&a);
+    for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
+      asked.mesh_peers.push_back(&p);
+  }
+  for (const std::string& name : args.algorithms) {
+    if (const AlgorithmInfo* a = experiment::find_algorithm(name)) {
+      asked.algorithms.push_back(a);
+    } else if (const experiment::MeshPeerInfo* p = experiment::find_mesh_peer(name)) {
+      asked.mesh_peers.push_back(p);
+    } else {
+      err << "gjklab query: unknown algorithm '" << name
+          << "'; valid names: " << experiment::algorithm_names() << "\n";
+      std::string peers;
+      for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
+        peers += (peers.empty() ? "" : ", ") + std::string(p.name);
+      if (!peers.empty()) err << "gjklab query: mesh cases also take: " << peers << "\n";
+      return std::nullopt;
+    }
+  }
+  experiment::AlgorithmOptions& options = asked.options;
+  if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
+  options.oracle.depth = args.depth;
+  options.precision = *precision_from_string(args.precision);  // checked by the parser
+  asked.decomposition = &experiment::decomposition_named(
+      args.decomposition.empty() ? "hull" : args.decomposition);  // checked by the parser
+  for (const std::string& option : args.decomposition_options) {
+    const std::size_t equals = option.find('=');
+    try {
+      if (equals == std::string::npos)
+        throw std::invalid_argument("--decomposition-option '" + option + "': expected KEY=VALUE");
+      experiment::set_decomposition_option(*asked.decomposition, asked.decomposition_options,
+                                           option.substr(0, equals), option.substr(equals + 1));
+    } catch (const std::invalid_argument& e) {
+      err << "gjklab query: " << e.what() << "\n";
+      return std::nullopt;
+    }
+  }
+
+  return asked;
+}
+
+/// Every valid case's answer lines, in case order, on `threads` workers.
+std::vector<std::vector<std::string>> answer_all(const std::vector<CaseOrError>& cases,
+                                                 const QueryAsked& asked, int threads) {
+  std::vector<std::vector<std::string>> lines(cases.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      if (const auto* c = std::get_if<PointCase>(&cases[i])) lines[i] = answer_lines(*c, asked);
+    }
+  };
+  std::vector<std::thread> pool;
+  const int workers = std::min<int>(threads, std::max<std::size_t>(cases.size(), 1));
+  for (int t = 1; t < workers; ++t)
+    pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool)
+    t.join();
+
+  return lines;
+}
+
 }  // namespace
 
 CLI::App* add_query_command(CLI::App& app, QueryArgs& args) {
@@ -142,66 +214,12 @@ int run_query(const QueryArgs& args, std::istream& in, std::ostream& out, std::o
            "\"radius_a\" and \"radius_b\" on each line\n";
     return 2;
   }
-  QueryAsked asked;
-  asked.named = !args.algorithms.empty();
-  if (args.algorithms.empty()) {
-    // All but `sat`: its cost grows with the cube of the vertex count, so on a large cloud it
-    // would run for hours; it answers when named.
-    for (const AlgorithmInfo& a : experiment::algorithms())
-      if (a.name != "sat") asked.algorithms.push_back(&a);
-    for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
-      asked.mesh_peers.push_back(&p);
-  }
-  for (const std::string& name : args.algorithms) {
-    if (const AlgorithmInfo* a = experiment::find_algorithm(name)) {
-      asked.algorithms.push_back(a);
-    } else if (const experiment::MeshPeerInfo* p = experiment::find_mesh_peer(name)) {
-      asked.mesh_peers.push_back(p);
-    } else {
-      err << "gjklab query: unknown algorithm '" << name
-          << "'; valid names: " << experiment::algorithm_names() << "\n";
-      std::string peers;
-      for (const experiment::MeshPeerInfo& p : experiment::mesh_peers())
-        peers += (peers.empty() ? "" : ", ") + std::string(p.name);
-      if (!peers.empty()) err << "gjklab query: mesh cases also take: " << peers << "\n";
-      return 2;
-    }
-  }
-  experiment::AlgorithmOptions& options = asked.options;
-  if (args.max_iterations > 0) options.set_max_iterations(args.max_iterations);
-  options.oracle.depth = args.depth;
-  options.precision = *precision_from_string(args.precision);  // checked by the parser
-  asked.decomposition = &experiment::decomposition_named(
-      args.decomposition.empty() ? "hull" : args.decomposition);  // checked by the parser
-  for (const std::string& option : args.decomposition_options) {
-    const std::size_t equals = option.find('=');
-    try {
-      if (equals == std::string::npos)
-        throw std::invalid_argument("--decomposition-option '" + option + "': expected KEY=VALUE");
-      experiment::set_decomposition_option(*asked.decomposition, asked.decomposition_options,
-                                           option.substr(0, equals), option.substr(equals + 1));
-    } catch (const std::invalid_argument& e) {
-      err << "gjklab query: " << e.what() << "\n";
-      return 2;
-    }
-  }
+  std::optional<QueryAsked> asked = asked_of(args, err);
+  if (!asked) return 2;
 
   std::string source;
   const std::vector<CaseOrError> cases = load_cases(args, in, source);
-  std::vector<std::vector<std::string>> lines(cases.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < cases.size(); i = next++) {
-      if (const auto* c = std::get_if<PointCase>(&cases[i])) lines[i] = answer_lines(*c, asked);
-    }
-  };
-  std::vector<std::thread> pool;
-  const int threads = std::min<int>(args.threads, std::max<std::size_t>(cases.size(), 1));
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool)
-    t.join();
+  const std::vector<std::vector<std::string>> lines = answer_all(cases, *asked, args.threads);
 
   int status = 0;
   std::vector<std::string> output;
