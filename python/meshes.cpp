@@ -13,9 +13,6 @@
 #include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/experiment/meshes/decompositions.hpp"
 #include "gjklab/experiment/meshes/mesh_query.hpp"
-#ifdef GJKLAB_HAVE_FCL
-#include "gjklab/peers/fcl_mesh.hpp"
-#endif
 #include "inputs.hpp"
 
 namespace gjklab::python {
@@ -123,9 +120,8 @@ py::dict truth_dict(const exact::MeshTruth& t) {
   return d;
 }
 
-}  // namespace
-
-void def_meshes(py::module_& m) {
+/// gjklab.read_closed_mesh and gjklab.exact_mesh: closed meshes and their exact truth.
+void def_mesh_truth(py::module_& m) {
   m.def(
       "read_closed_mesh", [](const py::handle& path) { return mesh_arrays(mesh_of(path, "a")); },
       py::arg("path"),
@@ -145,6 +141,10 @@ oriented, self-intersecting, inverted or degenerate.)");
 'a_inside_b', 'b_inside_a'), distance_squared (fractions.Fraction, exact), distance (correctly
 rounded), face_a and face_b (the triangles that meet or attain the distance; -1 for a
 containment), and the exact evaluations the answer took.)");
+}
+
+/// gjklab.decompose and gjklab.query_mesh: convex pieces and the algorithms over them.
+void def_mesh_pieces(py::module_& m) {
   m.def(
       "decompose",
       [](const py::handle& mesh, const std::string& method, const py::kwargs& options) {
@@ -193,6 +193,10 @@ concavity=50, min_clusters=4). Raises ValueError when the mesh is bad or the dec
         experiment::MeshSide sb{mesh_of(b, "b"), std::nullopt, {}};
         py::list answers;
         for (const std::string& name : names) {
+          if (const experiment::MeshPeerInfo* peer = experiment::find_mesh_peer(name)) {
+            answers.append(fields_dict(peer->run(sa.mesh, sb.mesh)));
+            continue;
+          }
           const experiment::AlgorithmSpec spec = spec_from(name, options);
           const experiment::AlgorithmInfo& info = algorithm_named(spec.name);
           try {
@@ -214,9 +218,14 @@ concavity=50, min_clusters=4). Raises ValueError when the mesh is bad or the dec
       R"(An algorithm's answer for two closed meshes (file paths or (vertices, faces)), as
 `gjklab query` prints it: 'exact' answers the solids (mesh truth); any other algorithm runs over
 the pairs of pieces of the named decomposition and its answer says which, with pieces_a,
-pieces_b, piece_pairs and piece_pairs_tested. With a list of algorithm names, a list of
+pieces_b, piece_pairs and piece_pairs_tested; a mesh peer ('fcl-bvh', with FCL) answers for
+the meshes themselves. With a list of algorithm names, a list of
 answers (the meshes decomposed once). decomposition_options: a dict of the decomposition's
 options (as gjklab.decompose takes them). Keyword arguments are the algorithms' options.)");
+}
+
+/// gjklab.prism_mesh and gjklab.lathe_mesh: generated closed meshes.
+void def_mesh_builders(py::module_& m) {
   m.def(
       "prism_mesh",
       [](const py::handle& polygon, double z0, double z1) {
@@ -235,27 +244,14 @@ its first corner) between heights z0 < z1, as (vertices, faces).)");
 region, r >= 0) about the z axis in `segments` steps, as (vertices, faces). ring=True: every
 r > 0, the profile closed (a torus, a tube); ring=False: the first and last points on the axis
 (a ball, a peg, a cup).)");
-#ifdef GJKLAB_HAVE_FCL
-  m.def(
-      "fcl_mesh",
-      [](const py::handle& a, const py::handle& b) {
-        const peers::FclMesh ma(mesh_of(a, "a")), mb(mesh_of(b, "b"));
-        const peers::FclMeshAnswer collide = peers::fcl_mesh_collide(ma, mb);
-        const peers::FclMeshAnswer distance = peers::fcl_mesh_distance(ma, mb);
-        py::dict d;
-        d["intersect"] = collide.intersect;
-        d["distance"] = distance.distance ? py::object(py::float_(*distance.distance)) : py::none();
-        d["witness_a"] = vector_or_none(distance.witness_a);
-        d["witness_b"] = vector_or_none(distance.witness_b);
-        d["face_a"] = collide.intersect ? collide.face_a : distance.face_a;
-        d["face_b"] = collide.intersect ? collide.face_b : distance.face_b;
-        return d;
-      },
-      py::arg("a"), py::arg("b"),
-      R"(FCL's answer for two closed meshes as BVHModel<OBBRSS> (what robotics code queries):
-intersect from fcl::collide, distance and witnesses from fcl::distance, and the deciding faces.
-FCL tests triangles, not solids: a mesh inside the other does not intersect for it.)");
-#endif
+}
+
+}  // namespace
+
+void def_meshes(py::module_& m) {
+  def_mesh_truth(m);
+  def_mesh_pieces(m);
+  def_mesh_builders(m);
 }
 
 }  // namespace gjklab::python

@@ -16,7 +16,6 @@ The compiled part (gjklab._gjklab) calls the same C++ API as the ``gjklab`` comm
     query_mesh(a, b, algorithm, decomposition)        an algorithm on two closed meshes
     prism_mesh(polygon, z0, z1), lathe_mesh(profile, segments, ring)
                                                       generated closed meshes
-    fcl_mesh(a, b)                                    FCL's BVH answer for two meshes (with FCL)
     run(experiment, out=..., threads=...)             an experiment file (or TOML text) -> archive
 
 and read_archive(path) reads an archive into pandas DataFrames.
@@ -43,11 +42,6 @@ from ._gjklab import (
     run,
 )
 from .archive import Archive, read_archive
-
-try:  # only when the module was built with FCL
-    from ._gjklab import fcl_mesh  # noqa: F401
-except ImportError:
-    pass
 
 __all__ = [
     "Archive",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import gjklab
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, run_cli
 
 BOX = SOURCE_DIR / "tests" / "data" / "meshes_closed" / "box.off"
 BAD = SOURCE_DIR / "tests" / "data" / "meshes_bad"
@@ -135,3 +135,16 @@ def test_real_object_folder_holds_the_packaged_meshes_with_faces():
     assert faces.shape == (12, 3)
     d = gjklab.decompose((vertices, faces), "exact")
     assert len(d["pieces"]) == 1 and d["proven"]
+
+
+def test_query_mesh_takes_the_mesh_peer_as_the_command_line_does():
+    l = l_prism()
+    notch = gjklab.prism_mesh([(1.25, 1.25), (1.75, 1.25), (1.75, 1.75), (1.25, 1.75)], 0.0, 1.0)
+    names = run_cli("names", "--json").stdout
+    if '"fcl-bvh"' not in names:
+        with pytest.raises(ValueError):
+            gjklab.query_mesh(l, notch, "fcl-bvh")
+        return
+    fcl, exact = gjklab.query_mesh(l, notch, ["fcl-bvh", "exact"])
+    assert fcl["algorithm"] == "fcl-bvh" and not fcl["intersect"]
+    assert fcl["distance"] == pytest.approx(exact["distance"], abs=1e-12)
