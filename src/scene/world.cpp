@@ -1,5 +1,7 @@
 #include "gjklab/scene/world.hpp"
 
+#include "contact_manifold.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,8 +13,11 @@
 #include "gjklab/gjk/epa.hpp"
 #include "gjklab/gjk/gjk_distance.hpp"
 #include "gjklab/gjk/subalgorithms.hpp"
+#include "gjklab/scene/compound.hpp"
 
 namespace gjklab::scene {
+
+using detail::ManifoldPoint;
 
 namespace {
 
@@ -23,129 +28,6 @@ std::int64_t nanoseconds_since(Clock::time_point t0) {
 
 std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
-/// Cosine of the largest angle (about 11°) between the contact normal and a face normal for
-/// which the face still counts as the contact feature (manifold by clipping); below it the
-/// contact is an edge or a vertex and gets the single GJK/EPA point.
-constexpr double kFaceAlignment = 0.98;
-/// Points per manifold: four span any face-on-face contact's support polygon well enough.
-constexpr std::size_t kMaxManifoldPoints = 4;
-
-/// Sutherland–Hodgman: the part of the polygon `poly` on the side (x − p)·m ≤ 0.
-std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Vec3& p, const Vec3& m) {
-  std::vector<Vec3> out;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& x = poly[i];
-    const Vec3& y = poly[(i + 1) % n];
-    const double sx = (x - p).dot(m), sy = (y - p).dot(m);
-    if (sx <= 0) out.push_back(x);
-    if ((sx <= 0) != (sy <= 0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
-  }
-  return out;
-}
-
-struct ManifoldPoint {
-  Vec3 point;
-  double depth;
-};
-
-/// Keeps at most four points: the deepest, the one farthest from it, the one farthest from
-/// their line, and the one that adds the most area (a greedy cover of the contact polygon).
-std::vector<ManifoldPoint> reduce_points(std::vector<ManifoldPoint> pts) {
-  if (pts.size() <= kMaxManifoldPoints) return pts;
-  std::vector<ManifoldPoint> kept;
-  auto take = [&](auto score) {
-    std::size_t best = 0;
-    double best_score = -1;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const double s = score(pts[i].point, pts[i].depth);
-      if (s > best_score) best_score = s, best = i;
-    }
-    kept.push_back(pts[best]);
-    pts.erase(pts.begin() + static_cast<std::ptrdiff_t>(best));
-  };
-  take([](const Vec3&, double d) { return d + 1e300; });
-  take([&](const Vec3& x, double) { return (x - kept[0].point).squaredNorm(); });
-  take([&](const Vec3& x, double) {
-    return (kept[1].point - kept[0].point).cross(x - kept[0].point).squaredNorm();
-  });
-  // The area x adds to the triangle: the parts of the triangles it forms with the edges it
-  // lies outside of (signed areas against the triangle's own orientation).
-  const Vec3 up = (kept[1].point - kept[0].point).cross(kept[2].point - kept[0].point);
-  take([&](const Vec3& x, double) {
-    double added = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = kept[k].point;
-      const Vec3& q = kept[(k + 1) % 3].point;
-      added += std::max(0.0, -(q - p).cross(x - p).dot(up));
-    }
-    return added;
-  });
-  return kept;
-}
-
-/// The face of `shape` (posed by `rotation`) whose world normal is most aligned with d.
-std::size_t best_face(const ConvexShape& shape, const Mat3& rotation, const Vec3& d,
-                      double& alignment) {
-  const Vec3 body_d = rotation.transpose() * d;
-  std::size_t best = 0;
-  alignment = -2;
-  for (std::size_t f = 0; f < shape.face_normals.size(); ++f) {
-    const double a = shape.face_normals[f].dot(body_d);
-    if (a > alignment) alignment = a, best = f;
-  }
-  return best;
-}
-
-/// A manifold by clipping the incident face against the reference face; the normal it
-/// returns through `normal` is the reference face's (oriented from a to b). Empty when neither
-/// face is aligned with the normal or nothing survives the clipping. The faces are the cores';
-/// swept radii move the surfaces out along the normal (points midway between them, depths
-/// grown by both radii).
-std::vector<ManifoldPoint> clip_manifold(const ConvexShape& sa, const Polytope& wa, const Mat3& ra,
-                                         const ConvexShape& sb, const Polytope& wb, const Mat3& rb,
-                                         Vec3& normal, double margin) {
-  if (sa.face_normals.empty() && sb.face_normals.empty()) return {};
-  double align_a = 0, align_b = 0;
-  const std::size_t fa = best_face(sa, ra, normal, align_a);
-  const std::size_t fb = best_face(sb, rb, -normal, align_b);
-  if (std::max(align_a, align_b) < kFaceAlignment) return {};
-  // Prefer a's face on near ties so the choice does not flicker between steps.
-  const bool a_is_reference = align_a + 1e-3 >= align_b;
-  const ConvexShape& rs = a_is_reference ? sa : sb;
-  const ConvexShape& is = a_is_reference ? sb : sa;
-  const Polytope& rw = a_is_reference ? wa : wb;
-  const Polytope& iw = a_is_reference ? wb : wa;
-  const Mat3& rr = a_is_reference ? ra : rb;
-  const auto& ref_loop = rs.faces[a_is_reference ? fa : fb];
-  const Vec3 nr = rr * rs.face_normals[a_is_reference ? fa : fb];  // out of the reference body
-  // The incident feature: its face, or all of a faceless core (a swept point or segment, whose
-  // alignment of −2 never makes it the reference).
-  std::vector<Vec3> poly;
-  if (is.faces.empty())
-    poly.assign(iw.vertices().begin(), iw.vertices().end());
-  else
-    for (int v : is.faces[a_is_reference ? fb : fa])
-      poly.push_back(iw.vertices()[v]);
-  const std::size_t m = ref_loop.size();
-  for (std::size_t k = 0; k < m && !poly.empty(); ++k) {
-    const Vec3& p = rw.vertices()[ref_loop[k]];
-    const Vec3& q = rw.vertices()[ref_loop[(k + 1) % m]];
-    poly = clip(poly, p, (q - p).cross(nr));  // side plane, outward for a loop CCW about nr
-  }
-  const Vec3 on_plane = rw.vertices()[ref_loop[0]];
-  const double r_ref = rs.swept_radius, r_inc = is.swept_radius;
-  std::vector<ManifoldPoint> pts;
-  for (const Vec3& x : poly) {
-    const double s = (x - on_plane).dot(nr);  // the cores' separation above the reference face
-    // Surfaces: the reference face moved out by r_ref, the incident point in by r_inc.
-    if (s - r_ref - r_inc <= margin)
-      pts.push_back({x - 0.5 * (s - r_ref + r_inc) * nr, r_ref + r_inc - s});
-  }
-  normal = a_is_reference ? nr : Vec3(-nr);
-  return reduce_points(std::move(pts));
 }
 
 /// The scene's own query (kDefaultNarrowPhase): from `warm` when not empty, else cold.
@@ -191,6 +73,8 @@ void World::set_threads(int threads) {
 
 std::uint32_t World::add(RigidBody body) {
   if (!body.shape) throw std::invalid_argument("a body needs a shape");
+  if (body.compound && body.compound->envelope != body.shape)
+    throw std::invalid_argument("a compound body's shape must be its envelope");
   bodies_.push_back(std::move(body));
   return static_cast<std::uint32_t>(bodies_.size() - 1);
 }
@@ -227,17 +111,6 @@ const Polytope& World::world_hull(std::uint32_t i) {
   return *world_hulls_[i];
 }
 
-struct World::PairOutcome {
-  std::uint32_t a = 0, b = 0;
-  int iterations = 0;
-  int iterations_cold = 0;  ///< measure_cold only
-  std::size_t failed = 0;   ///< GJK and EPA stops other than converged
-  bool epa = false;
-  QueryRecord query;                  ///< filled when the step records queries
-  std::vector<ManifoldPoint> points;  ///< empty: no contact
-  Vec3 normal = Vec3::UnitZ();
-};
-
 std::optional<Penetration> World::penetration(const Polytope& pa, const Polytope& pb,
                                               const DistanceResult& r) const {
   if (settings_.depth) return settings_.depth->run(pa, pb);
@@ -263,6 +136,13 @@ DistanceResult World::narrow_query(const Polytope& pa, const Polytope& pb,
 
 void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                     PairOutcome& out) const {
+  out.a = ia;
+  out.b = ib;
+  if (bodies_[ia].compound || bodies_[ib].compound) {
+    simplex.clear();  // piece pairs run cold: nothing to carry (compound.hpp)
+    collide_pieces(ia, ib, out);
+    return;
+  }
   const Polytope& pa = *world_hulls_[ia];
   const Polytope& pb = *world_hulls_[ib];
   const bool warm_startable = !settings_.query || settings_.query->warm_startable;
@@ -270,8 +150,6 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
                                                   ? std::span<const SimplexVertex>(simplex)
                                                   : std::span<const SimplexVertex>();
   const DistanceResult r = narrow_query(pa, pb, warm);
-  out.a = ia;
-  out.b = ib;
   out.iterations = r.iterations;
   if (query_log_) {
     QueryRecord& q = out.query;
@@ -292,19 +170,24 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
   if (r.termination != Termination::converged) ++out.failed;
   const auto kept = r.simplex.vertices();
   simplex.assign(kept.begin(), kept.end());
+  convex_contacts(*bodies_[ia].shape, pa, *bodies_[ib].shape, pb, r, out);
+}
 
+void World::convex_contacts(const ConvexShape& sa, const Polytope& pa, const ConvexShape& sb,
+                            const Polytope& pb, const DistanceResult& r, PairOutcome& out) const {
+  const std::uint32_t ia = out.a, ib = out.b;
   // Contacts within the margin plus the distance the pair can close in this step; those
   // beyond the margin are speculative (negative depth, see the solver's target). Swept shapes:
   // GJK measured their cores, whose surfaces lie `radii` (length units) closer together.
   const double margin = settings_.contact_margin + sweep_distance(ia) + sweep_distance(ib);
-  const double ra = bodies_[ia].shape->swept_radius, rb = bodies_[ib].shape->swept_radius;
+  const double ra = sa.swept_radius, rb = sb.swept_radius;
   const double radii = ra + rb;
   if (!r.intersect && !(r.distance < margin + radii)) return;
   Vec3 normal;
   ManifoldPoint single;
   if (r.intersect) {
     const std::optional<Penetration> p = penetration(pa, pb, r);
-    out.epa = true;
+    ++out.epa;
     if (!p || !p->converged) ++out.failed;
     if (!p) return;  // no depth for this pair: no contact rather than a guessed one
     normal = p->normal;
@@ -323,8 +206,8 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
     return;  // a failed query gives no contact rather than a NaN impulse
   normal.normalize();
   out.normal = normal;
-  out.points = clip_manifold(*bodies_[ia].shape, pa, bodies_[ia].pose.rotation, *bodies_[ib].shape,
-                             pb, bodies_[ib].pose.rotation, out.normal, margin);
+  out.points = detail::clip_manifold(sa, pa, bodies_[ia].pose.rotation, sb, pb,
+                                     bodies_[ib].pose.rotation, out.normal, margin);
   // The clipped points measure depth against one face. When the deepest is shallower than the
   // pair's GJK/EPA depth by more than the slop (length units), that face does not carry the
   // contact (a body pushed through a slab thinner than itself, past the face's plane) and the
@@ -340,23 +223,24 @@ void World::collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVerte
 
 void World::merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
                   double& iterations_cold) {
-  ++stats.narrow_queries;
+  stats.narrow_queries += out.queries;
   iterations += out.iterations;
   iterations_cold += out.iterations_cold;
   stats.failed_queries += out.failed;
-  stats.epa_queries += out.epa ? 1 : 0;
-  if (query_log_) query_log_->push_back(out.query);
+  stats.epa_queries += out.epa;
+  if (query_log_ && !out.compound) query_log_->push_back(out.query);
   if (out.points.empty()) {
     cache.points.clear();
     return;
   }
   const std::size_t first = contacts_.size();
-  for (const ManifoldPoint& m : out.points) {
+  for (std::size_t k = 0; k < out.points.size(); ++k) {
+    const ManifoldPoint& m = out.points[k];
     Contact c;
     c.a = out.a;
     c.b = out.b;
     c.point = m.point;
-    c.normal = out.normal;
+    c.normal = out.normals.empty() ? out.normal : out.normals[k];
     c.depth = m.depth;
     contacts_.push_back(c);
   }
@@ -447,8 +331,12 @@ void World::narrow_phase(const std::vector<BodyPair>& pairs, StepStats& stats) {
     PairCache& cache = cache_[pair_key(i, j)];
     cache.step = step_count_ + 1;
     caches.push_back(&cache);
-    world_hull(i);
-    world_hull(j);
+    for (std::uint32_t k : {i, j}) {
+      if (bodies_[k].compound)
+        world_pieces(k);
+      else
+        world_hull(k);
+    }
   }
   std::vector<PairOutcome> outcomes(pairs.size());
   auto run = [&](std::size_t begin, std::size_t end) {
@@ -484,6 +372,7 @@ StepStats World::step() {
   StepStats stats;
   world_hulls_.resize(bodies_.size());
   world_hull_step_.resize(bodies_.size(), 0);
+  world_pieces_.resize(bodies_.size());
   auto t0 = Clock::now();
   bounding_boxes(settings_.contact_margin, boxes_);
   broad_.find_pairs(boxes_, pairs_);

@@ -1,5 +1,6 @@
 #include "gjklab/simulation/scene_file.hpp"
 
+#include "scene_meshes.hpp"
 #include "scene_settings.hpp"
 #include "scene_toml.hpp"
 
@@ -120,22 +121,11 @@ std::vector<Vec3> family_cloud_points(const SceneTable& t, const experiment::Sha
   return cloud;
 }
 
-/// The files a `mesh` group or static names (`path`: one .off/.obj/.ply/.stl file or a folder
-/// of them, in name order), relative to the scene file's folder.
+/// The vertices of the files a `mesh` group or static names (mesh_paths), scaled by `size`.
 std::vector<std::vector<Vec3>> read_meshes(const SceneTable& t) {
-  const std::string path = t.string("path", "");
-  if (path.empty()) t.fail("path", "missing (shape = \"mesh\" needs a mesh file or a folder)");
-  std::filesystem::path resolved(path);
-  if (resolved.is_relative()) resolved = std::filesystem::path(t.file()).parent_path() / resolved;
-  std::vector<std::filesystem::path> files;
-  try {
-    files = exact::mesh_files(resolved);
-  } catch (const std::runtime_error& e) {
-    t.fail("path", e.what());
-  }
   std::vector<std::vector<Vec3>> meshes;
   const Vec3 s = size_of(t);
-  for (const auto& file : files) {
+  for (const auto& file : mesh_paths(t)) {
     try {
       meshes.push_back(exact::read_mesh_vertices(file));
     } catch (const std::runtime_error& e) {
@@ -145,6 +135,21 @@ std::vector<std::vector<Vec3>> read_meshes(const SceneTable& t) {
       v = v.cwiseProduct(s);
   }
   return meshes;
+}
+
+/// The compounds of a `mesh` group or static with `decomposition` (none without it: the mesh
+/// is then the hull of its vertices). The keys that only compounds take are refused elsewhere.
+std::vector<std::shared_ptr<const scene::CompoundShape>> compounds_of(const SceneTable& t,
+                                                                      const std::string& shape) {
+  if (!t.has("decomposition")) {
+    if (t.has("decomposition_options"))
+      t.fail("decomposition_options", "needs a `decomposition` (hull, exact or approximate)");
+    return {};
+  }
+  if (shape != "mesh")
+    t.fail("decomposition", "only a shape = \"mesh\" of closed meshes has a decomposition");
+  if (t.has("radius")) t.fail("radius", "a mesh made of pieces cannot be swept by a radius");
+  return mesh_compounds(t, size_of(t));
 }
 
 /// The hulls of a `real_object` group (`objects`: "all" or a list of names, as in experiments;
@@ -252,33 +257,40 @@ std::string body_shape_name(const SceneTable& t, SceneSetup& s) {
   return "uv_sphere";
 }
 
+/// The clouds of a static shape that is not made of pieces.
+std::vector<std::vector<Vec3>> static_clouds(const SceneTable& t, const std::string& shape) {
+  if (shape == "funnel") return funnel_panels(t);
+  if (shape == "mesh") return read_meshes(t);  // every file of a folder at the same pose
+  if (shape == "box" || shape == "hull") return {cloud_of(t, shape)};
+  t.fail("shape", "unknown static shape '" + shape + "'; valid: box, hull, mesh, funnel");
+}
+
 void add_statics(const SceneTable& root, SceneSetup& s, ShapeCache& shapes) {
   for (const SceneTable& t : root.tables("static")) {
-    t.allow_only({"shape", "size", "points", "path", "position", "rotation", "friction",
-                  "restitution", "bottom_radius", "top_radius", "height", "thickness", "segments"});
+    t.allow_only({"shape", "size", "points", "path", "decomposition", "decomposition_options",
+                  "position", "rotation", "friction", "restitution", "bottom_radius", "top_radius",
+                  "height", "thickness", "segments"});
     const std::string shape = t.string("shape", "");
     if (shape.empty()) t.fail("shape", "missing (required): box, hull, mesh or funnel");
     const Vec3 position = t.vec3("position", Vec3::Zero());
     const Quat rotation = rotation_of(t);
-    std::vector<std::vector<Vec3>> clouds;
-    if (shape == "funnel")
-      clouds = funnel_panels(t);
-    else if (shape == "mesh")
-      clouds = read_meshes(t);  // every file of a folder at the same pose
-    else if (shape == "box" || shape == "hull")
-      clouds.push_back(cloud_of(t, shape));
-    else
-      t.fail("shape", "unknown static shape '" + shape + "'; valid: box, hull, mesh, funnel");
-    for (auto& cloud : clouds) {
+    const Mat3 r = rotation.toRotationMatrix();
+    // The shape's own origin (the cloud's, the mesh file's) goes to `position`: the centre of
+    // mass sits where the shape put it relative to that origin.
+    std::vector<scene::RigidBody> bodies;
+    for (const auto& c : compounds_of(t, shape))  // a folder's files all at the same pose
+      bodies.push_back(
+          scene::make_static_body(c, rotation, position - r * c->envelope->input_origin));
+    for (auto& cloud :
+         bodies.empty() ? static_clouds(t, shape) : std::vector<std::vector<Vec3>>{}) {
       auto cs = shapes.get(t,
                            shape == "hull"   ? "points"
                            : shape == "mesh" ? "path"
                                              : "shape",
                            std::move(cloud));
-      // The cloud's own origin goes to `position`: the centre of mass sits where the cloud
-      // put it relative to that origin.
-      scene::RigidBody b = scene::make_static_body(
-          cs, rotation, position - rotation.toRotationMatrix() * cs->input_origin);
+      bodies.push_back(scene::make_static_body(cs, rotation, position - r * cs->input_origin));
+    }
+    for (scene::RigidBody& b : bodies) {
       b.friction = t.number("friction", 0.5, 0, 100);
       b.restitution = t.number("restitution", 0, 0, 1);
       s.world->add(b);
@@ -339,14 +351,52 @@ Vec3 ordered_centre(bool stack, const Vec3& origin, double spacing, std::int64_t
                                  static_cast<double>(layer));
 }
 
+/// What a group's bodies read from files: the clouds of a `mesh` (its vertices' hull) or a
+/// `real_object` group, or a `mesh` group's compounds (with `decomposition`); body i takes
+/// entry i mod their number.
+struct GroupFiles {
+  std::vector<std::vector<Vec3>> clouds;
+  std::vector<std::shared_ptr<const scene::CompoundShape>> compounds;
+  const std::shared_ptr<const scene::CompoundShape>& compound(std::int64_t i) const {
+    return compounds[static_cast<std::size_t>(i) % compounds.size()];
+  }
+};
+
+GroupFiles group_files(const SceneTable& t, const std::string& shape) {
+  GroupFiles f;
+  f.compounds = compounds_of(t, shape);
+  if (!f.compounds.empty()) return f;
+  if (shape == "mesh") f.clouds = read_meshes(t);
+  if (shape == "real_object") f.clouds = read_real_objects(t);
+  return f;
+}
+
 void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::mt19937_64& rng) {
   std::vector<Placed> placed;
   std::vector<double> sizes;
   std::size_t group = 0;
   for (const SceneTable& t : root.tables("bodies")) {
-    t.allow_only({"shape", "size", "vertices", "points", "path", "objects", "radius", "aspect",
-                  "count", "density", "friction", "restitution", "placement", "position", "spacing",
-                  "row", "region", "random_rotation", "velocity"});
+    t.allow_only({"shape",
+                  "size",
+                  "vertices",
+                  "points",
+                  "path",
+                  "decomposition",
+                  "decomposition_options",
+                  "objects",
+                  "radius",
+                  "aspect",
+                  "count",
+                  "density",
+                  "friction",
+                  "restitution",
+                  "placement",
+                  "position",
+                  "spacing",
+                  "row",
+                  "region",
+                  "random_rotation",
+                  "velocity"});
     const std::string shape = body_shape_name(t, s);
     if (shape.empty()) t.fail("shape", "missing (required): " + body_shapes());
     const double radius = swept_radius_of(t, shape);
@@ -357,12 +407,11 @@ void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::
     // leaves the others' clouds and the placement stream as they were.
     const experiment::OwnedRandomStream rng_of_group =
         generated ? experiment::case_stream(s.seed, group) : nullptr;
-    const std::vector<std::vector<Vec3>> meshes = shape == "mesh" ? read_meshes(t)
-                                                  : shape == "real_object"
-                                                      ? read_real_objects(t)
-                                                      : std::vector<std::vector<Vec3>>{};
+    const GroupFiles files = group_files(t, shape);
+    const auto& meshes = files.clouds;
     ++group;
     auto shape_of_body = [&](std::int64_t i) {
+      if (!files.compounds.empty()) return files.compound(i)->envelope;
       if (generated)
         return shapes.get(t, "shape", family_cloud_points(t, *generated, *rng_of_group), radius);
       if (!meshes.empty())
@@ -384,12 +433,15 @@ void add_bodies(const SceneTable& root, SceneSetup& s, ShapeCache& shapes, std::
     else if (placement != "stack" && placement != "grid")
       t.fail("placement", "unknown placement '" + placement + "'; valid: stack, grid, random");
     for (std::int64_t i = 0; i < count; ++i) {
-      if (i > 0 && (generated || meshes.size() > 1)) cs = shape_of_body(i);
+      if (i > 0 && (generated || meshes.size() > 1 || files.compounds.size() > 1))
+        cs = shape_of_body(i);
       const Vec3 centre = placement == "random"
                               ? free_centre(t, region, cs->radius, placed, rng, i, count)
                               : ordered_centre(placement == "stack", origin, spacing, row, i);
       const Quat q = spin ? random_rotation(rng) : Quat::Identity();
-      scene::RigidBody b = scene::make_dynamic_body(cs, density, q, centre);
+      scene::RigidBody b = files.compounds.empty()
+                               ? scene::make_dynamic_body(cs, density, q, centre)
+                               : scene::make_dynamic_body(files.compound(i), density, q, centre);
       b.friction = t.number("friction", 0.5, 0, 100);
       b.restitution = t.number("restitution", 0, 0, 1);
       b.velocity = t.vec3("velocity", Vec3::Zero());
@@ -436,6 +488,12 @@ SceneSetup parse_scene(const std::string& text, const std::string& source) {
   std::mt19937_64 rng(s.seed);
   add_statics(root, s, shapes);
   add_bodies(root, s, shapes, rng);
+  const auto& bodies = s.world->bodies();
+  if (s.queries_every > 0 && std::any_of(bodies.begin(), bodies.end(),
+                                         [](const auto& b) { return b.compound != nullptr; }))
+    sc.fail("queries_every",
+            "not available in a scene with mesh bodies made of pieces (`decomposition`): their "
+            "queries are per piece pair, which queries/ and the stream family cannot name");
   return s;
 }
 

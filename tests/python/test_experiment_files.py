@@ -2,13 +2,14 @@
 lies in: each study runs one case (`gjklab run`), each scene two frames (`gjklab simulate`), the
 hunt file a few queries (`gjklab hunt`) and the bench config one small case (`gjklab bench
 --config`). A relative path inside a file (`base`, a family's `path`: `../data/...`,
-`../../tests/...`) is relative to that file's folder, so a file moved, or a file it names moved,
-without its paths following fails here rather than in a user's run.
+`../../tests/...`, a scene's `../../examples/l_prism.off`) is relative to that file's folder, so
+a file moved, or a file it names moved, without its paths following fails here rather than in a
+user's run.
 
-The files run in a temporary copy of the folders they name (experiments/, tests/data/,
-tests/regression/data/ and an empty build/), as the docs' examples do, so that nothing is
-written into the source tree; `stream_funnel.toml` reads the queries its scene records into
-build/scene_funnel.h5, which the copy gets first, as the study's own header says.
+The files run in a temporary copy of the folders they name (experiments/, examples/,
+tests/data/, tests/regression/data/ and an empty build/), as the docs' examples do, so that
+nothing is written into the source tree; `stream_funnel.toml` reads the queries its scene records
+into build/scene_funnel.h5, which the copy gets first, as the study's own header says.
 """
 
 import shutil
@@ -49,7 +50,7 @@ def run(workspace, args):
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory):
     root = tmp_path_factory.mktemp("repository")
-    for part in ("experiments", "tests/data", "tests/regression/data"):
+    for part in ("experiments", "examples", "tests/data", "tests/regression/data"):
         shutil.copytree(SOURCE_DIR / part, root / part)
     (root / "build").mkdir()
     # queries_every = 120: frame 120's queries are the stream's cases.

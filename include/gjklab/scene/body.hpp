@@ -84,9 +84,14 @@ std::shared_ptr<const ConvexShape> make_convex_shape(std::vector<Vec3> cloud);
 /// cloud and std::invalid_argument for a bad radius.
 std::shared_ptr<const ConvexShape> make_swept_shape(std::vector<Vec3> cloud, double radius);
 
+struct CompoundShape;
+
 /// A rigid body. Static bodies (inverse mass 0) never move and collide with dynamic ones only.
 struct RigidBody {
+  /// The convex shape; for a compound body its envelope (bounds and mass, see compound.hpp).
   std::shared_ptr<const ConvexShape> shape;
+  /// Set for a body made of convex pieces (compound.hpp): contacts come from its pieces.
+  std::shared_ptr<const CompoundShape> compound;
   Pose pose;                             ///< body frame → world frame
   Quat orientation = Quat::Identity();   ///< the rotation of `pose`, kept for integration
   Vec3 velocity = Vec3::Zero();          ///< of the centre of mass, world frame (length/s)

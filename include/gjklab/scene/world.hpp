@@ -20,6 +20,9 @@
 //     deeper than `slop` apart by a fraction `baumgarte` per step; they move the bodies but are
 //     then discarded, so the correction adds no kinetic energy.
 //  5. Positions: x += (v + v_pseudo) dt, q += ½ (ω + ω_pseudo) q dt, renormalised.
+//
+// Compound bodies (compound.hpp) take part in every step alike; their pairs' narrow phase is
+// per piece pair (step 2 for each, cold), and a StepStats query count counts piece pairs.
 #pragma once
 
 #include <array>
@@ -122,7 +125,7 @@ struct Contact {
 /// What one step did, for the archive's frames table.
 struct StepStats {
   std::size_t candidate_pairs = 0;  ///< pairs from the broad phase (static pairs dropped)
-  std::size_t narrow_queries = 0;   ///< GJK queries (= candidate pairs)
+  std::size_t narrow_queries = 0;   ///< GJK queries (= candidate pairs, but compound pairs')
   std::size_t epa_queries = 0;      ///< of which went on to EPA (intersecting)
   std::size_t contacts = 0;         ///< contact points
   std::int64_t broadphase_ns = 0;   ///< AABBs and broad phase
@@ -187,7 +190,8 @@ class World {
   void restore(const CarriedState& state);
 
   /// While `log` is set, every query of a step is appended to it (nullptr: none; the caller
-  /// keeps the vector alive).
+  /// keeps the vector alive). The piece-pair queries of compound bodies are not logged: a
+  /// QueryRecord names bodies, not pieces.
   void record_queries(std::vector<QueryRecord>* log) { query_log_ = log; }
 
   /// Advances by settings().dt; returns what the step did.
@@ -232,6 +236,14 @@ class World {
   /// previous simplex, which it replaces (safe to run for different pairs in parallel).
   void collide(std::uint32_t ia, std::uint32_t ib, std::vector<SimplexVertex>& simplex,
                PairOutcome& out) const;
+  /// The contacts of one convex pair (the shapes sa, sb of bodies out.a, out.b, at the world
+  /// hulls pa, pb: whole bodies or pieces) from its narrow-phase answer r: out.points and
+  /// out.normal (no points: no contact), its depth query counted in out.epa and out.failed.
+  void convex_contacts(const ConvexShape& sa, const Polytope& pa, const ConvexShape& sb,
+                       const Polytope& pb, const DistanceResult& r, PairOutcome& out) const;
+  /// The queries of a pair with a compound body: every piece pair whose world boxes meet
+  /// within the pair's margin, cold, each with its own contacts and normal (world_compound.cpp).
+  void collide_pieces(std::uint32_t ia, std::uint32_t ib, PairOutcome& out) const;
   /// The narrow phase's query of a pair (the supplied one, else kDefaultNarrowPhase), from
   /// `warm` when not empty.
   DistanceResult narrow_query(const Polytope& pa, const Polytope& pb,
@@ -244,6 +256,8 @@ class World {
   void merge(const PairOutcome& out, PairCache& cache, StepStats& stats, double& iterations,
              double& iterations_cold);
   const Polytope& world_hull(std::uint32_t i);
+  /// A compound body's pieces in world coordinates, rebuilt at most once a step.
+  const std::vector<Polytope>& world_pieces(std::uint32_t i);
   void warm_start_impulses(std::size_t first, std::size_t count, const PairCache& cache);
   void store_impulses(PairCache& cache, std::size_t first, std::size_t count) const;
   void solve_velocities();
@@ -265,6 +279,8 @@ class World {
   /// them directly so that their simplices carry vertex indices).
   std::vector<std::optional<Polytope>> world_hulls_;
   std::vector<std::uint64_t> world_hull_step_;
+  /// The same for compound bodies' pieces (world_hull_step_ stamps them too).
+  std::vector<std::vector<Polytope>> world_pieces_;
   std::vector<QueryRecord>* query_log_ = nullptr;
 };
 

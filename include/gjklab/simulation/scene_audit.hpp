@@ -3,10 +3,17 @@
 // (experiment/registry/certified.hpp) on the same world-frame hulls, beside what the narrow
 // phase made of them. Here, in the simulation layer, because the scene layer knows neither the
 // oracle nor files.
+//
+// A pair with a compound body (scene/compound.hpp) is answered piece pair by piece pair, every
+// piece pair (the boxes the narrow phase culls with do not limit the audit), and its row holds
+// the body pair's answer as the narrow phase sees the bodies, the union of their pieces: it
+// intersects when a piece pair does, its distance is the least piece-pair distance (the exact
+// distance between the unions), its depth the largest piece-pair depth (the depth the narrow
+// phase resolves piece by piece, not the solids' own penetration depth), and it is certified
+// when every piece pair was.
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "gjklab/experiment/archive/scene_archive.hpp"
@@ -26,11 +33,12 @@ class SceneAudit {
   void after_step(const scene::World& w, std::int64_t frame, experiment::SceneAuditRows& rows);
 
  private:
-  const Polytope& hull(const scene::World& w, std::uint32_t i);
+  /// Body i's world hull, or its pieces' (computed once per audited step).
+  const std::vector<Polytope>& parts(const scene::World& w, std::uint32_t i);
 
   bool depth_;
   std::vector<scene::BodyPair> pairs_;
-  std::vector<std::optional<Polytope>> hulls_;
+  std::vector<std::vector<Polytope>> parts_;  ///< per body; empty: not needed this step
 };
 
 }  // namespace gjklab::simulation
