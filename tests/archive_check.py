@@ -15,7 +15,7 @@ SHAPES = {"sphere_points": 0, "ball_points": 1, "cube_points": 2, "gaussian": 3,
           "capsule": 18, "segment": 19, "needle": 20, "rod": 21, "wedge": 22, "plate": 23}
 PLACEMENTS = {"separated": 0, "overlapping": 1, "random": 2, "touching": 3, "as_given": 4}
 CONTACTS = {"separated": 0, "touching_band": 1, "intersecting": 2}
-METHODS = {"certified": 0, "qp": 1, "none": 2}
+METHODS = {"certified": 0, "qp": 1, "none": 2, "mesh_truth": 3}
 TERMINATIONS = {"converged": 0, "step_limit": 1, "no_progress": 2, "degenerate_simplex": 3,
                 "cycling": 4, "numerical_failure": 5, "invalid_input": 6}
 

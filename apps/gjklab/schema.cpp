@@ -24,7 +24,8 @@ CLI::App* add_schema_command(CLI::App& app, SchemaArgs& args) {
 namespace {
 
 void print_tables(std::ostream& out) {
-  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry", "enums",
+  for (const char* group : {"root", "cases", "exact", "algorithms", "traces", "geometry",
+                            "meshes/exact", "meshes/algorithms", "meshes/geometry", "enums",
                             "scene/root", "scene/frames", "scene/bodies", "scene/contacts",
                             "scene/audit", "scene/queries", "scene/shapes", "scene/state"})
     out << "<!-- schema table: " << group << " -->\n"

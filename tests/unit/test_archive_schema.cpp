@@ -16,7 +16,9 @@ using namespace gjklab::experiment;
 
 namespace {
 
-const std::vector<std::string> kGroups = {"cases", "exact", "algorithms", "traces", "geometry"};
+const std::vector<std::string> kGroups = {"cases",           "exact",        "algorithms",
+                                          "traces",          "geometry",     "meshes/exact",
+                                          "meshes/algorithms", "meshes/geometry"};
 
 std::string document(const std::string& relative) {
   std::ifstream in(std::string(GJKLAB_TESTS_DIR) + "/../" + relative, std::ios::binary);
@@ -130,7 +132,7 @@ TEST_CASE("the list of enum values names every member the archive's enum types h
        {"- `ShapeKind`: `sphere_points` = 0,", "`sphere` = 17", "`capsule` = 18",
         "- `Placement`: `separated` = 0,", "- `ContactClass`: ", "- `Termination`: `converged` = 0",
         "- `FailureClass`: `none` = 0", "- `GjkStep`: `continued` = 0",
-        "- `AnswerMethod`: `certified` = 0, `qp` = 1, `none` = 2\n"}) {
+        "- `AnswerMethod`: `certified` = 0, `qp` = 1, `none` = 2, `mesh_truth` = 3\n"}) {
     INFO(item);
     CHECK(list.find(item) != std::string::npos);
   }

@@ -31,7 +31,8 @@ inline constexpr std::size_t kMaxDecompositionFaces = 2'000;
 
 struct ExactConvexDecomposition {
   /// Each piece's corners (the extreme points of its convex hull), rounded to the nearest double,
-  /// in the mesh's frame.
+  /// in the mesh's frame; corners and pieces sorted lexicographically by coordinates, so that the
+  /// same mesh gives the same list in every process.
   std::vector<std::vector<Vec3>> pieces;
   /// The largest Euclidean distance from an exact corner to its rounded double, rounded up
   /// (absolute, length units); 0 when every corner is a double (e.g. a convex mesh, one piece).

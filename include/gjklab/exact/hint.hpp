@@ -39,15 +39,19 @@ enum class AnswerMethod : std::uint8_t {
   certified,  ///< a floating-point hint, verified by an exact certificate
   qp,         ///< the exact quadratic program (CGAL), or the exact Minkowski hull for depth
   none,       ///< not computed (a depth that was not asked for, or of a separated pair)
+  /// the exact truth of two closed meshes (exact/mesh_truth.hpp): exact triangle tests and
+  /// distances, culled by proven bounds
+  mesh_truth,
 };
 
 inline constexpr auto kAnswerMethodNames = std::to_array<EnumName<AnswerMethod>>({
     {AnswerMethod::certified, "certified"},
     {AnswerMethod::qp, "qp"},
     {AnswerMethod::none, "none"},
+    {AnswerMethod::mesh_truth, "mesh_truth"},
 });
 static_assert(in_value_order(kAnswerMethodNames) &&
-              ends_at(kAnswerMethodNames, AnswerMethod::none));
+              ends_at(kAnswerMethodNames, AnswerMethod::mesh_truth));
 
 constexpr std::string_view to_string(AnswerMethod m) {
   return name_of(kAnswerMethodNames, m);

@@ -141,6 +141,20 @@ std::pair<Vec3, double> rounded(const Point& p) {
   return {out, moved_squared == 0 ? 0 : std::nextafter(std::sqrt(moved_squared), up)};
 }
 
+/// Sorts each piece's corners and then the pieces, lexicographically by coordinates. CGAL lists
+/// the same pieces in an order that changes from process to process (it follows memory
+/// addresses), and archives must not.
+void in_canonical_order(std::vector<std::vector<Vec3>>& pieces) {
+  const auto before = [](const Vec3& p, const Vec3& q) {
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  for (std::vector<Vec3>& piece : pieces)
+    std::sort(piece.begin(), piece.end(), before);
+  std::sort(pieces.begin(), pieces.end(), [&](const auto& p, const auto& q) {
+    return std::lexicographical_compare(p.begin(), p.end(), q.begin(), q.end(), before);
+  });
+}
+
 /// The decomposition and its proof (CGAL's checks may throw).
 ExactConvexDecomposition decompose_and_prove(const TriangleMesh& mesh, std::string_view source) {
   Polyhedron surface = to_polyhedron(mesh);
@@ -165,6 +179,7 @@ ExactConvexDecomposition decompose_and_prove(const TriangleMesh& mesh, std::stri
   if (union_of(pieces) != solid)
     fail(source, "proof failed: the union of the " + std::to_string(pieces.size()) +
                      " pieces differs from the solid");
+  in_canonical_order(out.pieces);
   return out;
 }
 

@@ -230,6 +230,79 @@ void read_geometry(const Reader& in, Archive& a) {
   }
 }
 
+/// Rows [offset, offset + count) of a /meshes table, checked against its length.
+template <class T>
+std::span<const T> rows_of(const Reader& in, const std::vector<T>& v, std::uint64_t offset,
+                           std::uint64_t count, const std::string& what) {
+  if (count > v.size() || offset > v.size() - count)
+    in.cx.error("/meshes/" + what + " rows [" + std::to_string(offset) + ", " +
+                std::to_string(offset + count) + ") lie outside its " + std::to_string(v.size()) +
+                " rows");
+  return std::span<const T>(v).subspan(offset, count);
+}
+
+/// /meshes/geometry: the faces and pieces of the kept non-convex cases (whose vertices
+/// /geometry holds).
+void read_mesh_geometry(const Reader& in, hid_t m, Archive& a) {
+  const std::string p = "/meshes";
+  const auto index_rows = read_table(in, m, p, schema::kMeshGeometryColumns,
+                                     in.committed(schema::checkpoint::mesh_geometry));
+  const auto fa = read_table(in, m, p, schema::kFacesAColumns,
+                             in.committed(schema::checkpoint::mesh_faces_a));
+  const auto fb = read_table(in, m, p, schema::kFacesBColumns,
+                             in.committed(schema::checkpoint::mesh_faces_b));
+  const auto pieces = read_table(in, m, p, schema::kPieceColumns,
+                                 in.committed(schema::checkpoint::mesh_pieces));
+  const auto corners = read_table(in, m, p, schema::kPieceCornerColumns,
+                                  in.committed(schema::checkpoint::mesh_piece_corners));
+  const auto index = case_index(a);
+  for (const schema::MeshGeometryRow& row : index_rows) {
+    CaseResult& r = a.results[find_case(in, index, p + "/case_id", row.case_id)];
+    if (!r.geometry)
+      in.cx.error(p + "/case_id " + std::to_string(row.case_id) + " has no /geometry row");
+    for (const schema::FaceRow& f : rows_of(in, fa, row.faces_a_offset, row.faces_a_count, "faces_a"))
+      r.geometry->faces_a.push_back(f.face);
+    for (const schema::FaceRow& f : rows_of(in, fb, row.faces_b_offset, row.faces_b_count, "faces_b"))
+      r.geometry->faces_b.push_back(f.face);
+    for (const schema::PieceRow& piece :
+         rows_of(in, pieces, row.pieces_offset, row.pieces_count, "pieces")) {
+      KeptPiece& kept = r.geometry->pieces.emplace_back();
+      kept.decomposition = piece.decomposition;
+      kept.side = piece.side;
+      for (const schema::VertexRow& c :
+           rows_of(in, corners, piece.corners_offset, piece.corners_count, "piece_corners"))
+        kept.corners.push_back(c.point);
+    }
+  }
+}
+
+/// /meshes: the non-convex records beside /exact's and /algorithms', and the kept geometry.
+void read_meshes(const Reader& in, Archive& a) {
+  if (!h5::has_link(in.cx, in.root, "/", "meshes")) return;
+  a.header.meshes = true;
+  const h5::Handle m = h5::open_group(in.cx, in.root, "/", "meshes");
+  const auto& names = a.header.algorithm_names;
+  for (CaseResult& r : a.results)
+    r.mesh.emplace().algorithms.resize(names.size());
+  if (a.header.oracle) {
+    const h5::Handle g = h5::open_group(in.cx, m.get(), "/meshes", "exact");
+    const auto rows = records<MeshExactRecord>(
+        a.results, [](CaseResult & r) -> auto& { return r.mesh->exact.emplace(); });
+    read_columns(in, g.get(), "/meshes/exact", schema::kMeshExactColumns,
+                 std::span<MeshExactRecord* const>(rows));
+  }
+  const h5::Handle all = h5::open_group(in.cx, m.get(), "/meshes", "algorithms");
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string p = "/meshes/algorithms/" + names[k];
+    const h5::Handle g = h5::open_group(in.cx, all.get(), "/meshes/algorithms", names[k]);
+    const auto rows = records<MeshAlgorithmRecord>(
+        a.results, [k](CaseResult & r) -> auto& { return r.mesh->algorithms[k]; });
+    read_columns(in, g.get(), p, schema::kMeshAlgorithmColumns,
+                 std::span<MeshAlgorithmRecord* const>(rows));
+  }
+  read_mesh_geometry(in, m.get(), a);
+}
+
 /// /traces/<algorithm>: each case's traces.
 void read_traces(const Reader& in, Archive& a) {
   const auto& names = a.header.algorithm_names;
@@ -280,6 +353,7 @@ Archive read_archive(const fs::path& path) {
   read_algorithms(in, a);
   read_geometry(in, a);
   if (a.header.trace_mode != TraceMode::none) read_traces(in, a);
+  read_meshes(in, a);
   return a;
 }
 

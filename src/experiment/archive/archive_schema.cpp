@@ -234,6 +234,15 @@ std::vector<ArchiveColumn> archive_columns(std::string_view group) {
     describe(schema::kVerticesAColumns, out);
     describe(schema::kVerticesBColumns, out);
   }
+  if (group == "meshes/exact") describe(schema::kMeshExactColumns, out);
+  if (group == "meshes/algorithms") describe(schema::kMeshAlgorithmColumns, out);
+  if (group == "meshes/geometry") {
+    describe(schema::kMeshGeometryColumns, out);
+    describe(schema::kFacesAColumns, out);
+    describe(schema::kFacesBColumns, out);
+    describe(schema::kPieceColumns, out);
+    describe(schema::kPieceCornerColumns, out);
+  }
   return out;
 }
 

@@ -63,11 +63,36 @@ struct VertexRow {
   Vec3 point = Vec3::Zero();
 };
 
+/// One row of /meshes/geometry's index: where a kept non-convex case's faces and pieces lie.
+struct MeshGeometryRow {
+  std::uint64_t case_id = 0;
+  std::uint64_t faces_a_offset = 0;
+  std::uint64_t faces_a_count = 0;
+  std::uint64_t faces_b_offset = 0;
+  std::uint64_t faces_b_count = 0;
+  std::uint64_t pieces_offset = 0;
+  std::uint64_t pieces_count = 0;
+};
+
+/// One row of /meshes/faces_a or faces_b.
+struct FaceRow {
+  std::array<std::uint32_t, 3> face{};
+};
+
+/// One row of /meshes/pieces: a kept piece, its corners in /meshes/piece_corners.
+struct PieceRow {
+  std::string decomposition;
+  std::int32_t side = 0;
+  std::uint64_t corners_offset = 0;
+  std::uint64_t corners_count = 0;
+};
+
 /// The record's member a column stores; its type decides the HDF5 type and the row width.
 template <class R>
 using Field = std::variant<std::uint64_t R::*, std::uint32_t R::*, std::int32_t R::*, double R::*,
                            bool R::*, std::string R::*, Vec3 R::*, std::array<double, 4> R::*,
                            std::array<double, 12> R::*, std::array<std::int32_t, 4> R::*,
+                           std::array<std::uint32_t, 3> R::*,
                            ShapeKind R::*, Placement R::*, ContactClass R::*, Termination R::*,
                            FailureClass R::*, GjkStep R::*, exact::AnswerMethod R::*>;
 
@@ -243,6 +268,69 @@ inline constexpr auto kTraceColumns = std::to_array<ColumnSpec<TraceRow>>({
     {"weights", &TraceRow::weights, "barycentric weights of the simplex points (distance queries)"},
 });
 
+// ---- /meshes: what non-convex pairs add (archives of nonconvex families only) ----
+
+inline constexpr auto kMeshExactColumns = std::to_array<ColumnSpec<MeshExactRecord>>({
+    {"contact", &MeshExactRecord::contact,
+     "how the solids' truth was decided: `separated`, `triangles_meet`, `a_inside_b` or "
+     "`b_inside_a` (one surface inside the other solid, no triangles meeting)"},
+    {"face_a", &MeshExactRecord::face_a,
+     "the triangle of A (index into its faces) that meets B's or attains the distance; −1 for "
+     "a containment"},
+    {"face_b", &MeshExactRecord::face_b, "the same for B"},
+    {"exact_intersection_tests", &MeshExactRecord::exact_intersection_tests,
+     "triangle pairs tested for intersection in exact arithmetic (the others were ruled out "
+     "by their boxes)"},
+    {"exact_distance_evaluations", &MeshExactRecord::exact_distance_evaluations,
+     "triangle pairs whose squared distance was evaluated exactly (the others were ruled out "
+     "by proven floating-point lower bounds)"},
+});
+
+inline constexpr auto kMeshAlgorithmColumns = std::to_array<ColumnSpec<MeshAlgorithmRecord>>({
+    {"pieces_a", &MeshAlgorithmRecord::pieces_a,
+     "convex pieces of A under the algorithm's decomposition; 0 for a mesh peer"},
+    {"pieces_b", &MeshAlgorithmRecord::pieces_b, "the same for B"},
+    {"piece_pairs", &MeshAlgorithmRecord::piece_pairs, "`pieces_a · pieces_b`"},
+    {"piece_pairs_tested", &MeshAlgorithmRecord::piece_pairs_tested,
+     "pairs of pieces the algorithm ran on (the others' boxes ruled them out)"},
+    {"piece_a", &MeshAlgorithmRecord::piece_a,
+     "the deciding piece of A (intersecting, or nearest of those run); −1 when none"},
+    {"piece_b", &MeshAlgorithmRecord::piece_b, "the same for B"},
+    {"face_a", &MeshAlgorithmRecord::face_a,
+     "a mesh peer's deciding triangle of A; −1 when it reports none, and for pieces"},
+    {"face_b", &MeshAlgorithmRecord::face_b, "the same for B"},
+});
+
+inline constexpr auto kMeshGeometryColumns = std::to_array<ColumnSpec<MeshGeometryRow>>({
+    {"case_id", &MeshGeometryRow::case_id,
+     "a kept case (its vertices are its clouds in `/geometry`)"},
+    {"faces_a_offset", &MeshGeometryRow::faces_a_offset, "first row of mesh A in `faces_a`"},
+    {"faces_a_count", &MeshGeometryRow::faces_a_count, "its number of triangles"},
+    {"faces_b_offset", &MeshGeometryRow::faces_b_offset, "first row of mesh B in `faces_b`"},
+    {"faces_b_count", &MeshGeometryRow::faces_b_count, "its number of triangles"},
+    {"pieces_offset", &MeshGeometryRow::pieces_offset, "first row of its pieces in `pieces`"},
+    {"pieces_count", &MeshGeometryRow::pieces_count,
+     "its pieces, of every decomposition its algorithms ran on"},
+});
+inline constexpr auto kFacesAColumns = std::to_array<ColumnSpec<FaceRow>>({
+    {"faces_a", &FaceRow::face,
+     "triangles of every kept mesh A: indices into its vertices in `/geometry/vertices_a`, "
+     "counter-clockwise seen from outside"},
+});
+inline constexpr auto kFacesBColumns = std::to_array<ColumnSpec<FaceRow>>({
+    {"faces_b", &FaceRow::face, "the same for the meshes B"},
+});
+inline constexpr auto kPieceColumns = std::to_array<ColumnSpec<PieceRow>>({
+    {"decomposition", &PieceRow::decomposition, "the decomposition the piece is of"},
+    {"side", &PieceRow::side, "0: a piece of A, 1: of B"},
+    {"corners_offset", &PieceRow::corners_offset,
+     "first row of its corners in `piece_corners` (the piece is their convex hull)"},
+    {"corners_count", &PieceRow::corners_count, "its number of corners"},
+});
+inline constexpr auto kPieceCornerColumns = std::to_array<ColumnSpec<VertexRow>>({
+    {"piece_corners", &VertexRow::point, "x, y, z of the pieces' corners (world units)"},
+});
+
 // ---- root attributes ----
 
 /// The prefix of the root attributes that hold a table's rows at the last checkpoint.
@@ -254,6 +342,11 @@ inline constexpr std::string_view cases = "checkpoint_cases";
 inline constexpr std::string_view geometry = "checkpoint_geometry";
 inline constexpr std::string_view vertices_a = "checkpoint_vertices_a";
 inline constexpr std::string_view vertices_b = "checkpoint_vertices_b";
+inline constexpr std::string_view mesh_geometry = "checkpoint_mesh_geometry";
+inline constexpr std::string_view mesh_faces_a = "checkpoint_mesh_faces_a";
+inline constexpr std::string_view mesh_faces_b = "checkpoint_mesh_faces_b";
+inline constexpr std::string_view mesh_pieces = "checkpoint_mesh_pieces";
+inline constexpr std::string_view mesh_piece_corners = "checkpoint_mesh_piece_corners";
 /// The traces of the header's algorithm number `algorithm`.
 std::string traces(std::size_t algorithm);
 }  // namespace checkpoint

@@ -152,6 +152,74 @@ void GeometryTables::append(const h5::Context& cx, std::span<const CaseResult> r
   vertices_b.append(cx, b);
 }
 
+/// /meshes: what non-convex pairs add (archives of nonconvex families only): the truth's and
+/// each algorithm's rows beside /exact's and /algorithms', and the faces and pieces of the
+/// cases /geometry keeps.
+struct MeshTables {
+  std::optional<ColumnTable<MeshExactRecord>> exact;
+  std::vector<ColumnTable<MeshAlgorithmRecord>> algorithms;
+  ColumnTable<schema::MeshGeometryRow> index;
+  ColumnTable<schema::FaceRow> faces_a, faces_b;
+  ColumnTable<schema::PieceRow> pieces;
+  ColumnTable<schema::VertexRow> corners;
+
+  void append(const h5::Context& cx, std::span<const CaseResult> results);
+  void append_geometry(const h5::Context& cx, std::span<const CaseResult> results);
+  void close(const h5::Context& cx) {
+    if (exact) exact->close(cx);
+    for (auto& a : algorithms)
+      a.close(cx);
+    index.close(cx);
+    faces_a.close(cx);
+    faces_b.close(cx);
+    pieces.close(cx);
+    corners.close(cx);
+  }
+};
+
+void MeshTables::append(const h5::Context& cx, std::span<const CaseResult> results) {
+  std::vector<const MeshExactRecord*> truth;
+  std::vector<std::vector<const MeshAlgorithmRecord*>> answers(algorithms.size());
+  for (const CaseResult& r : results) {
+    if (exact) truth.push_back(&*r.mesh->exact);
+    for (std::size_t k = 0; k < algorithms.size(); ++k)
+      answers[k].push_back(&r.mesh->algorithms[k]);
+  }
+  if (exact) exact->append(cx, truth);
+  for (std::size_t k = 0; k < algorithms.size(); ++k)
+    algorithms[k].append(cx, answers[k]);
+  append_geometry(cx, results);
+}
+
+void MeshTables::append_geometry(const h5::Context& cx, std::span<const CaseResult> results) {
+  std::vector<schema::MeshGeometryRow> rows;
+  std::vector<schema::FaceRow> fa, fb;
+  std::vector<schema::PieceRow> ps;
+  std::vector<schema::VertexRow> cs;
+  for (const CaseResult& r : results) {
+    if (!r.geometry) continue;
+    const CaseGeometry& g = *r.geometry;
+    rows.push_back({r.record.case_id, faces_a.rows() + fa.size(), g.faces_a.size(),
+                    faces_b.rows() + fb.size(), g.faces_b.size(), pieces.rows() + ps.size(),
+                    g.pieces.size()});
+    for (const auto& f : g.faces_a)
+      fa.push_back({f});
+    for (const auto& f : g.faces_b)
+      fb.push_back({f});
+    for (const KeptPiece& piece : g.pieces) {
+      ps.push_back({piece.decomposition, piece.side, corners.rows() + cs.size(),
+                    piece.corners.size()});
+      for (const Vec3& c : piece.corners)
+        cs.push_back({c});
+    }
+  }
+  index.append(cx, rows);
+  faces_a.append(cx, fa);
+  faces_b.append(cx, fb);
+  pieces.append(cx, ps);
+  corners.append(cx, cs);
+}
+
 /// The rows of one algorithm's traces in a batch of results.
 std::vector<schema::TraceRow> trace_rows(std::span<const CaseResult> results,
                                          std::size_t algorithm) {
@@ -185,6 +253,7 @@ struct ArchiveWriter::Impl {
     std::vector<ColumnTable<AlgorithmRecord>> algorithms;
     std::optional<GeometryTables> geometry;
     std::vector<ColumnTable<schema::TraceRow>> traces;  ///< per algorithm, when traces are kept
+    std::optional<MeshTables> meshes;                    ///< nonconvex families only
 
     /// Closes every dataset, reporting the first that fails to close.
     void close(const h5::Context& cx) {
@@ -195,6 +264,7 @@ struct ArchiveWriter::Impl {
       geometry->close(cx);
       for (auto& t : traces)
         t.close(cx);
+      if (meshes) meshes->close(cx);
     }
   };
 
@@ -202,6 +272,7 @@ struct ArchiveWriter::Impl {
   fs::path temp_path;
   bool overwrite = false;
   bool oracle = true;
+  bool meshes = false;
   std::size_t algorithm_count = 0;
   h5::Context cx;
   // Declaration order matters: the file is closed after everything opened in it.
@@ -222,6 +293,7 @@ struct ArchiveWriter::Impl {
         temp_path(std::move(temp_p)),
         overwrite(overwrite_),
         oracle(h.oracle),
+        meshes(h.meshes),
         algorithm_count(h.algorithm_names.size()),
         cx(temp_path.string()) {}
 
@@ -229,6 +301,7 @@ struct ArchiveWriter::Impl {
   void create_file();
   void write_root_attributes(const ArchiveHeader& h);
   Columns create_columns(const ArchiveHeader& h);
+  MeshTables create_mesh_tables(const ArchiveHeader& h, hsize_t chunk);
   void write(std::span<const CaseResult> results);
 
   /// Records how many rows every group holds, flushes the file and snapshots it: an
@@ -246,6 +319,13 @@ struct ArchiveWriter::Impl {
     count(schema::checkpoint::vertices_b, c.geometry->vertices_b.rows());
     for (std::size_t k = 0; k < c.traces.size(); ++k)
       count(schema::checkpoint::traces(k), c.traces[k].rows());
+    if (c.meshes) {
+      count(schema::checkpoint::mesh_geometry, c.meshes->index.rows());
+      count(schema::checkpoint::mesh_faces_a, c.meshes->faces_a.rows());
+      count(schema::checkpoint::mesh_faces_b, c.meshes->faces_b.rows());
+      count(schema::checkpoint::mesh_pieces, c.meshes->pieces.rows());
+      count(schema::checkpoint::mesh_piece_corners, c.meshes->corners.rows());
+    }
     cx.check(H5Fflush(root.get(), H5F_SCOPE_GLOBAL), "cannot flush the file");
     snapshot();
   }
@@ -349,6 +429,7 @@ ArchiveWriter::Impl::Columns ArchiveWriter::Impl::create_columns(const ArchiveHe
                        {cx, t, g.get(), p, schema::kVerticesAColumns, kVertexChunkRows},
                        {cx, t, g.get(), p, schema::kVerticesBColumns, kVertexChunkRows}});
   }
+  if (h.meshes) c.meshes.emplace(create_mesh_tables(h, chunk));
   if (h.trace_mode != TraceMode::none) {
     h5::Handle all = h5::create_group(cx, r, "/", "traces");
     for (const std::string& name : h.algorithm_names) {
@@ -358,6 +439,32 @@ ArchiveWriter::Impl::Columns ArchiveWriter::Impl::create_columns(const ArchiveHe
     }
   }
   return c;
+}
+
+MeshTables ArchiveWriter::Impl::create_mesh_tables(const ArchiveHeader& h, hsize_t chunk) {
+  const schema::Types& t = *types;
+  h5::Handle m = h5::create_group(cx, root.get(), "/", "meshes");
+  const std::string p = "/meshes";
+  MeshTables tables{
+      std::nullopt,
+      {},
+      {cx, t, m.get(), p, schema::kMeshGeometryColumns, chunk},
+      {cx, t, m.get(), p, schema::kFacesAColumns, kVertexChunkRows},
+      {cx, t, m.get(), p, schema::kFacesBColumns, kVertexChunkRows},
+      {cx, t, m.get(), p, schema::kPieceColumns, kVertexChunkRows},
+      {cx, t, m.get(), p, schema::kPieceCornerColumns, kVertexChunkRows},
+  };
+  if (h.oracle) {
+    h5::Handle g = h5::create_group(cx, m.get(), p, "exact");
+    tables.exact.emplace(cx, t, g.get(), p + "/exact", schema::kMeshExactColumns, chunk);
+  }
+  h5::Handle all = h5::create_group(cx, m.get(), p, "algorithms");
+  for (const std::string& name : h.algorithm_names) {
+    h5::Handle g = h5::create_group(cx, all.get(), p + "/algorithms", name);
+    tables.algorithms.emplace_back(cx, t, g.get(), p + "/algorithms/" + name,
+                                   schema::kMeshAlgorithmColumns, chunk);
+  }
+  return tables;
 }
 
 void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
@@ -374,6 +481,7 @@ void ArchiveWriter::Impl::write(std::span<const CaseResult> rs) {
   c.geometry->append(cx, rs);
   for (std::size_t k = 0; k < c.traces.size(); ++k)
     c.traces[k].append(cx, trace_rows(rs, k));
+  if (c.meshes) c.meshes->append(cx, rs);
 }
 
 namespace {
@@ -483,6 +591,12 @@ void ArchiveWriter::append(std::span<const CaseResult> results) {
     if (r.exact.has_value() != w.oracle)
       w.cx.error(id() + (w.oracle ? " has no exact record but the oracle is on"
                                   : " has an exact record but the oracle is off"));
+    if (r.mesh.has_value() != w.meshes)
+      w.cx.error(id() + (w.meshes ? " is not a non-convex pair, and the archive's are"
+                                  : " is a non-convex pair, and the archive's are not"));
+    if (r.mesh && (r.mesh->algorithms.size() != w.algorithm_count ||
+                   r.mesh->exact.has_value() != w.oracle))
+      w.cx.error(id() + "'s non-convex records do not match its algorithms and oracle");
   }
   try {
     w.write(results);

@@ -13,6 +13,8 @@
 #include "experiment/cases/contacts.hpp"
 #include "experiment/cases/random_stream.hpp"
 #include "experiment/cases/sampling.hpp"
+#include "gjklab/exact/closed_mesh.hpp"
+#include "gjklab/experiment/cases/nonconvex_pairs.hpp"
 #include "gjklab/experiment/cases/seeded_random.hpp"
 #include "gjklab/geometry/polytope.hpp"
 #include "gjklab/geometry/shapes.hpp"
@@ -471,6 +473,29 @@ void apply_geometry_sweep(const GeometrySweep& sweep, double value, gsl_rng* r,
   }
 }
 
+/// A nonconvex family's pair: its meshes, scaled, with their vertices as the clouds (the pair
+/// is posed by its kind: placement random, no intended gap).
+void draw_mesh_pair(RandomStream& stream, const FamilySpec& family, GeneratedCase& out) {
+  MeshPair pair = draw_nonconvex_pair(*family.nonconvex, family.closed_meshes, stream);
+  for (TriangleMesh* mesh : {&pair.a, &pair.b})
+    for (Vec3& v : mesh->vertices)
+      v *= family.scale;
+  out.a = pair.a.vertices;
+  out.b = pair.b.vertices;
+  out.mesh_a = std::move(pair.a);
+  out.mesh_b = std::move(pair.b);
+  out.record.placement = Placement::random;
+  out.record.intended_gap = std::numeric_limits<double>::quiet_NaN();
+}
+
+/// The posed meshes must still bound solids: rounding the posed coordinates could make a
+/// nearly touching part of the surface cross itself, and the truth would then not be a solid's.
+void validate_case_meshes(const GeneratedCase& out, std::uint64_t case_id) {
+  const std::string id = "generate_case " + std::to_string(case_id);
+  exact::validate_closed_mesh(*out.mesh_a, id + ", mesh A");
+  exact::validate_closed_mesh(*out.mesh_b, id + ", mesh B");
+}
+
 }  // namespace
 
 std::span<const FamilyShapeInfo> family_shapes() {
@@ -484,6 +509,9 @@ std::span<const FamilyShapeInfo> family_shapes() {
       {"real_object",
        "convex hulls of the real meshes of Debian's libcgal-demo (objects: names or \"all\"), "
        "at unit size"},
+      {"nonconvex",
+       "pairs of closed non-convex meshes queried as solids (pair: rings, peg-in-hole, "
+       "ball-in-cup, l-in-l, stars, nested, meshes)"},
   };
   static const std::vector<FamilyShapeInfo> shapes = [] {
     std::vector<FamilyShapeInfo> out;
@@ -523,7 +551,9 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   rec.shape_b = family.shape_b;
   rec.scale = family.scale;
 
-  if (!family.stored.empty()) {
+  if (family.nonconvex) {
+    draw_mesh_pair(*stream, family, out);
+  } else if (!family.stored.empty()) {
     take_stored_pair(family, base_id, out);
   } else if (family.contact != ContactType::none) {
     place_contact_pair(r, family, out);
@@ -550,6 +580,7 @@ GeneratedCase generate_case(const ExperimentConfig& config, std::uint64_t case_i
   for (const auto* cloud : {&out.a, &out.b})
     if (const std::string problem = describe_invalid_cloud(*cloud); !problem.empty())
       throw std::runtime_error("generate_case " + std::to_string(case_id) + ": " + problem);
+  if (out.mesh_a) validate_case_meshes(out, case_id);
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "experiment/config/family_config.hpp"
+#include "experiment/config/mesh_config.hpp"
 #include "experiment/config/toml_section.hpp"
 
 #include <algorithm>
@@ -171,11 +172,17 @@ std::vector<std::string_view> query_algorithm_names() {
   return names;
 }
 
-AlgorithmSpec read_algorithm(const Section& s) {
-  const std::vector<std::string_view> valid = query_algorithm_names();
+/// One [[algorithm]] table: one spec, or in a nonconvex experiment one per decomposition it
+/// lists (mesh_config.hpp).
+std::vector<AlgorithmSpec> read_algorithm(const Section& s, bool nonconvex) {
+  std::vector<std::string_view> valid = query_algorithm_names();
+  if (nonconvex)
+    for (const MeshPeerInfo& peer : mesh_peers())
+      valid.push_back(peer.name);
   const auto name = s.string("name");
   if (!name) s.missing("name", "missing (required); valid: " + join(valid));
   const toml::node& name_node = *s.find("name");
+  if (const MeshPeerInfo* peer = find_mesh_peer(*name)) return {read_mesh_peer(s, *peer, nonconvex)};
   const AlgorithmInfo* info = find_algorithm(*name);
   if (info && info->kind == AnswerKind::exact)
     s.fail(name_node, "name",
@@ -188,6 +195,7 @@ AlgorithmSpec read_algorithm(const Section& s) {
   std::vector<std::string_view> allowed = {"name", "label", "max_iterations"};
   for (std::string_view key : own_option_keys(*name))
     allowed.push_back(key);
+  allowed.insert(allowed.end(), std::begin(kDecompositionKeys), std::end(kDecompositionKeys));
   s.allow_only(allowed, [&](std::string_view key) {
     std::vector<std::string_view> owners;
     for (std::string_view other : valid) {
@@ -220,7 +228,7 @@ AlgorithmSpec read_algorithm(const Section& s) {
       s.fail(*node, key, e.what());
     }
   }
-  return spec;
+  return with_decompositions(s, std::move(spec), nonconvex);
 }
 
 constexpr std::string_view kGeometrySweeps[] = {"offset", "scale"};
@@ -290,7 +298,9 @@ void read_sweep(const Section& s, ExperimentConfig& config) {
       }
       std::string shown = text;
       std::replace(shown.begin(), shown.end(), ' ', ',');
-      copy.label = spec.name + "@" + *parameter + "=" + shown;
+      // A decomposition's label keeps it: the sweep's groups of each decomposition differ.
+      const std::string& base = spec.decomposition ? spec.label : spec.name;
+      copy.label = base + "@" + *parameter + "=" + shown;
       expanded.push_back(std::move(copy));
     }
   }
@@ -391,20 +401,21 @@ void read_algorithms(const Section& top, ExperimentConfig& config) {
   for (std::size_t i = 0; i < algorithms->size(); ++i) {
     const toml::table& t = *algorithms->get(i)->as_table();
     const Section s = top.child(t, "algorithm[" + std::to_string(i) + "]");
-    AlgorithmSpec spec = read_algorithm(s);
-    spec.options.oracle = config.oracle_options(config.depth);
-    if (config.has_swept_shapes() && !find_algorithm(spec.name)->can.swept)
-      s.fail(*s.find("name"), "name",
-             "'" + spec.name +
-                 "' answers for polytopes only, and this experiment has sphere-swept shapes "
-                 "(a family with a radius, or shape sphere or capsule); valid here: " +
-                 swept_algorithm_names());
-    for (std::size_t j = 0; j < config.algorithms.size(); ++j)
-      if (config.algorithms[j].label == spec.label)
-        s.fail(*s.find(s.find("label") ? "label" : "name"), s.find("label") ? "label" : "name",
-               "'" + spec.label + "' is already used by algorithm[" + std::to_string(j) +
-                   "]; give the second one its own label = \"...\"");
-    config.algorithms.push_back(std::move(spec));
+    for (AlgorithmSpec& spec : read_algorithm(s, config.has_nonconvex_families())) {
+      spec.options.oracle = config.oracle_options(config.depth);
+      if (config.has_swept_shapes() && !find_algorithm(spec.name)->can.swept)
+        s.fail(*s.find("name"), "name",
+               "'" + spec.name +
+                   "' answers for polytopes only, and this experiment has sphere-swept shapes "
+                   "(a family with a radius, or shape sphere or capsule); valid here: " +
+                   swept_algorithm_names());
+      for (std::size_t j = 0; j < config.algorithms.size(); ++j)
+        if (config.algorithms[j].label == spec.label)
+          s.fail(*s.find(s.find("label") ? "label" : "name"), s.find("label") ? "label" : "name",
+                 "'" + spec.label + "' is already used by algorithm[" + std::to_string(j) +
+                     "]; give the second one its own label = \"...\"");
+      config.algorithms.push_back(std::move(spec));
+    }
   }
 }
 
@@ -454,6 +465,7 @@ ExperimentConfig parse_experiment(const std::string& text, const std::string& so
   read_algorithms(top, config);
   if (const toml::table* t = top.subtable("sweep")) read_sweep(top.child(*t, "sweep"), config);
   if (const toml::table* t = top.subtable("trace")) read_trace(top.child(*t, "trace"), config);
+  check_nonconvex_experiment(top, config);
   return config;
 }
 
@@ -473,6 +485,11 @@ bool ExperimentConfig::has_swept_shapes() const {
     return f.radius_a.hi > 0 || f.radius_b.hi > 0 ||
            std::any_of(f.stored.begin(), f.stored.end(), swept_pair);
   });
+}
+
+bool ExperimentConfig::has_nonconvex_families() const {
+  return std::any_of(families.begin(), families.end(),
+                     [](const FamilySpec& f) { return f.nonconvex.has_value(); });
 }
 
 std::vector<std::string> ExperimentConfig::result_family_names() const {

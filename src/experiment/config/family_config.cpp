@@ -11,6 +11,7 @@
 #include <string_view>
 #include <variant>
 
+#include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/exact/mesh_io.hpp"
 #include "gjklab/experiment/cases/cloud_io.hpp"
 #include "gjklab/experiment/cases/families.hpp"
@@ -167,6 +168,58 @@ void read_meshes(const Section& s, const std::string& experiment_file, FamilySpe
   f.shape_a = f.shape_b = ShapeKind::mesh;
 }
 
+/// The closed meshes of a `pair = "meshes"` family: those under `path`, or the packaged
+/// non-convex ones; each at unit size, its file name in `objects`.
+void read_closed_meshes(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+  const toml::node* node = s.find("path") ? s.find("path") : s.find("pair");
+  std::vector<std::filesystem::path> files;
+  try {
+    if (const auto path = s.string("path")) {
+      f.path = *path;
+      std::filesystem::path resolved(*path);
+      if (resolved.is_relative())
+        resolved = std::filesystem::path(experiment_file).parent_path() / resolved;
+      files = exact::mesh_files(resolved);
+    } else {
+      for (std::string_view name : kPackagedNonconvexMeshes)
+        files.push_back(real_object_meshes() / name);
+    }
+    for (const auto& file : files) {
+      f.closed_meshes.push_back(unit_size(exact::read_closed_mesh(file)));
+      f.objects.push_back(file.filename().string());
+    }
+  } catch (const std::runtime_error& e) {
+    s.fail(*node, s.find("path") ? "path" : "pair", e.what());
+  }
+}
+
+/// `pair = "NAME"` of a nonconvex family (and `path` for pair = "meshes").
+void read_nonconvex(const Section& s, const std::string& experiment_file, FamilySpec& f) {
+  const auto pair = s.string("pair");
+  if (!pair)
+    s.missing("pair", "missing (shape = \"nonconvex\" needs one of: " +
+                          names_list(kNonconvexPairNames) + ")");
+  f.nonconvex = nonconvex_pair_from_string(*pair);
+  if (!f.nonconvex)
+    s.fail(*s.find("pair"), "pair",
+           "unknown pair '" + *pair + "'; valid: " + names_list(kNonconvexPairNames));
+  if (s.find("path") && *f.nonconvex != NonconvexPair::meshes)
+    s.fail(*s.find("path"), "path", "applies only to pair = \"meshes\"");
+  if (*f.nonconvex == NonconvexPair::meshes) read_closed_meshes(s, experiment_file, f);
+  f.shape_a = f.shape_b = ShapeKind::mesh;
+}
+
+/// A nonconvex family builds and poses its pairs itself: the keys that draw or place convex
+/// shapes do not apply.
+void refuse_convex_draw_keys(const Section& s) {
+  for (std::string_view key : {"vertices", "vertices_a", "vertices_b", "rotate", "aspect",
+                               "scale_b", "offset", "radius", "radius_a", "radius_b", "placement"})
+    if (s.find(key))
+      s.fail(*s.find(key), key,
+             "does not apply to shape = \"nonconvex\" (its pairs are built and posed by their "
+             "kind; see docs/experiments.md)");
+}
+
 /// `objects = ["elephant", …]` or `"all"` of a real_object family: each object's hull, read
 /// now, so that an unknown name or a missing package is a config error.
 void read_real_objects(const Section& s, FamilySpec& f) {
@@ -265,9 +318,13 @@ struct MeshFiles {
 struct RealObjects {
   static constexpr std::array<std::string_view, 1> own_keys{"objects"};
 };
+/// `shape = "nonconvex"`.
+struct NonconvexPairs {
+  static constexpr std::array<std::string_view, 2> own_keys{"pair", "path"};
+};
 
-using FamilyForm =
-    std::variant<NamedShape, NamedShapePair, ContactPairs, StoredPairs, MeshFiles, RealObjects>;
+using FamilyForm = std::variant<NamedShape, NamedShapePair, ContactPairs, StoredPairs, MeshFiles,
+                                RealObjects, NonconvexPairs>;
 
 /// The keys some form owns, in the order they are checked, each with its refusal in the other
 /// forms (which says where the key belongs).
@@ -279,7 +336,8 @@ constexpr OwnedKey kOwnedKeys[] = {
     {"objects", "applies only to shape = \"real_object\""},
     {"contact", "applies only to shape = \"contact\""},
     {"angle", "applies only to shape = \"contact\""},
-    {"path", "applies only to shape = \"file\", \"stream\" or \"mesh\""},
+    {"pair", "applies only to shape = \"nonconvex\""},
+    {"path", "applies only to shape = \"file\", \"stream\", \"mesh\" or \"nonconvex\""},
     {"shape_a", "cannot be combined with 'shape' (which sets both shapes)"},
     {"shape_b", "cannot be combined with 'shape' (which sets both shapes)"},
 };
@@ -313,6 +371,7 @@ FamilyForm family_form(const Section& s) {
   if (name == "file" || name == "stream") return StoredPairs{.stream = name == "stream"};
   if (name == "mesh") return MeshFiles{};
   if (name == "real_object") return RealObjects{};
+  if (name == "nonconvex") return NonconvexPairs{};
   return NamedShape{};
 }
 
@@ -356,6 +415,7 @@ void read_pair_source(const Section& s, const FamilyForm& form, const std::strin
                  [&](const StoredPairs& p) { read_stored_pairs(s, experiment_file, f, p.stream); },
                  [&](const MeshFiles&) { read_meshes(s, experiment_file, f); },
                  [&](const RealObjects&) { read_real_objects(s, f); },
+                 [&](const NonconvexPairs&) { read_nonconvex(s, experiment_file, f); },
              },
              form);
 }
@@ -423,6 +483,7 @@ std::string read_family_name(const Section& s, const FamilyForm& form, const Fam
           [&](const RealObjects&) {
             return std::string(s.find("objects")->is_string() ? "real_object:all" : "real_object");
           },
+          [&](const NonconvexPairs&) { return std::string(to_string(*f.nonconvex)); },
       },
       form);
 }
@@ -433,9 +494,11 @@ FamilySpec read_family(const Section& s, const PlacementSpec& placement,
                        const std::string& experiment_file) {
   s.allow_only({"name",    "shape",  "shape_a", "shape_b",   "vertices", "vertices_a", "vertices_b",
                 "scale",   "rotate", "weight",  "placement", "contact",  "angle",      "aspect",
-                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects"});
+                "scale_b", "offset", "path",    "radius",    "radius_a", "radius_b",   "objects",
+                "pair"});
   const FamilyForm form = family_form(s);
   refuse_foreign_keys(s, form);
+  if (std::holds_alternative<NonconvexPairs>(form)) refuse_convex_draw_keys(s);
   FamilySpec f;
   read_pair_source(s, form, experiment_file, f);
   read_vertex_counts(s, f);

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "gjklab/exact/convex_decomposition.hpp"
+#include "gjklab/experiment/registry/algorithm_options.hpp"
 
 namespace gjklab::experiment {
 
@@ -154,6 +155,23 @@ void set_decomposition_option(const DecompositionInfo& d, DecompositionOptions& 
 #ifdef GJKLAB_HAVE_HACD
   peers::validate(options.hacd);
 #endif
+}
+
+std::vector<std::pair<std::string, std::string>> describe_decomposition(
+    const DecompositionInfo& d, const DecompositionOptions& options) {
+  std::vector<std::pair<std::string, std::string>> out{{"decomposition", std::string(d.name)}};
+  for (const DecompositionOptionRow& row : d.options) {
+    const std::string value = std::visit(
+        [&](auto member) {
+          const auto v = options.hacd.*member;
+          if constexpr (std::is_same_v<decltype(v), const bool>) return std::string(v ? "true" : "false");
+          else if constexpr (std::is_same_v<decltype(v), const int>) return std::to_string(v);
+          else return round_trip(v);
+        },
+        row.member);
+    out.emplace_back("decomposition." + std::string(row.key), value);
+  }
+  return out;
 }
 
 std::vector<Polytope> piece_polytopes(const Decomposition& d) {

@@ -57,24 +57,19 @@ AnswerFields piece_fields(const AlgorithmInfo& algorithm, const MeshSide& a, con
 
 #ifdef GJKLAB_HAVE_FCL
 /// FCL's collide decides intersect; its distance query gives the distance and witnesses.
-AnswerFields fcl_bvh(const TriangleMesh& a, const TriangleMesh& b) {
+MeshPeerAnswer fcl_bvh(const TriangleMesh& a, const TriangleMesh& b) {
   const peers::FclMesh ma(a), mb(b);
   const peers::FclMeshAnswer collide = peers::fcl_mesh_collide(ma, mb);
   const peers::FclMeshAnswer distance = peers::fcl_mesh_distance(ma, mb);
-  AnswerFields f;
-  f.emplace_back("algorithm", std::string("fcl-bvh"));
-  f.emplace_back("intersect", collide.intersect);
-  if (distance.distance) f.emplace_back("distance", *distance.distance);
-  if (distance.witness_a && distance.witness_b) {
-    f.emplace_back("witness_a", *distance.witness_a);
-    f.emplace_back("witness_b", *distance.witness_b);
-  }
+  MeshPeerAnswer answer;
+  answer.outcome.intersect = collide.intersect;
+  answer.outcome.distance = distance.distance;
+  answer.outcome.witness_a = distance.witness_a;
+  answer.outcome.witness_b = distance.witness_b;
   const peers::FclMeshAnswer& decided = collide.intersect ? collide : distance;
-  if (decided.face_a >= 0) {
-    f.emplace_back("face_a", decided.face_a);
-    f.emplace_back("face_b", decided.face_b);
-  }
-  return f;
+  answer.face_a = decided.face_a;
+  answer.face_b = decided.face_b;
+  return answer;
 }
 
 constexpr std::array kMeshPeers = {
@@ -88,6 +83,23 @@ constexpr std::array<MeshPeerInfo, 0> kMeshPeers = {};
 #endif
 
 }  // namespace
+
+AnswerFields mesh_peer_fields(const MeshPeerInfo& peer, const MeshPeerAnswer& answer) {
+  const Outcome& o = answer.outcome;
+  AnswerFields f;
+  f.emplace_back("algorithm", std::string(peer.name));
+  f.emplace_back("intersect", o.intersect);
+  if (o.distance) f.emplace_back("distance", *o.distance);
+  if (o.witness_a && o.witness_b) {
+    f.emplace_back("witness_a", *o.witness_a);
+    f.emplace_back("witness_b", *o.witness_b);
+  }
+  if (answer.face_a >= 0) {
+    f.emplace_back("face_a", answer.face_a);
+    f.emplace_back("face_b", answer.face_b);
+  }
+  return f;
+}
 
 std::span<const MeshPeerInfo> mesh_peers() {
   return kMeshPeers;

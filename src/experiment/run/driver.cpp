@@ -19,6 +19,7 @@
 #include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/experiment/registry/certified.hpp"
 #include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/meshes/mesh_cases.hpp"
 #include "gjklab/experiment/run/judging.hpp"
 #include "gjklab/experiment/run/provenance.hpp"
 #include "gjklab/experiment/run/ranks.hpp"
@@ -161,11 +162,16 @@ ArchiveHeader archive_header(const ExperimentConfig& config, std::uint64_t cases
     // The registry name first: a label need not contain it.
     auto options = describe_options(a);
     options.insert(options.begin(), {"algorithm", a.name});
+    if (a.decomposition) {
+      const auto decomposition = describe_decomposition(*a.decomposition, a.decomposition_options);
+      options.insert(options.end(), decomposition.begin(), decomposition.end());
+    }
     h.algorithm_options.push_back(std::move(options));
   }
   h.oracle = config.oracle;
   h.touching_band = config.touching_band;
   h.trace_mode = config.trace;
+  h.meshes = config.has_nonconvex_families();
   return h;
 }
 
@@ -182,6 +188,7 @@ std::string utc_now() {
 
 CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) {
   GeneratedCase generated = generate_case(config, case_id);
+  if (generated.mesh_a) return evaluate_mesh_case(config, std::move(generated));
   CaseResult result;
   result.record = generated.record;
   const Polytope a(generated.a), b(generated.b);

@@ -61,6 +61,62 @@ std::vector<Vec3> get_points(ByteReader& in) {
   return points;
 }
 
+void put_faces(ByteWriter& out, const std::vector<std::array<std::uint32_t, 3>>& faces) {
+  out.put<std::uint64_t>(faces.size());
+  for (const auto& f : faces)
+    for (std::uint32_t i : f)
+      out.put(i);
+}
+
+std::vector<std::array<std::uint32_t, 3>> get_faces(ByteReader& in) {
+  const auto n = in.get<std::uint64_t>();
+  std::vector<std::array<std::uint32_t, 3>> faces;
+  // Each face takes 12 bytes, so a corrupt count fails in get() before a huge allocation.
+  for (std::uint64_t k = 0; k < n; ++k)
+    for (std::uint32_t& i : faces.emplace_back())
+      i = in.get<std::uint32_t>();
+  return faces;
+}
+
+/// A non-convex pair's records, and the faces and pieces of its kept geometry.
+void put_mesh(ByteWriter& out, const CaseResult& r) {
+  out.put<std::uint8_t>(r.mesh.has_value());
+  if (!r.mesh) return;
+  out.put<std::uint8_t>(r.mesh->exact.has_value());
+  if (r.mesh->exact) put_record(out, *r.mesh->exact, schema::kMeshExactColumns);
+  out.put<std::uint64_t>(r.mesh->algorithms.size());
+  for (const MeshAlgorithmRecord& a : r.mesh->algorithms)
+    put_record(out, a, schema::kMeshAlgorithmColumns);
+  if (!r.geometry) return;
+  put_faces(out, r.geometry->faces_a);
+  put_faces(out, r.geometry->faces_b);
+  out.put<std::uint64_t>(r.geometry->pieces.size());
+  for (const KeptPiece& p : r.geometry->pieces) {
+    out.put_string(p.decomposition);
+    out.put(p.side);
+    put_points(out, p.corners);
+  }
+}
+
+void get_mesh(ByteReader& in, CaseResult& r) {
+  if (!in.get<std::uint8_t>()) return;
+  MeshCaseResult& mesh = r.mesh.emplace();
+  if (in.get<std::uint8_t>()) mesh.exact = get_record(in, schema::kMeshExactColumns);
+  const auto algorithms = in.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < algorithms; ++i)
+    mesh.algorithms.push_back(get_record(in, schema::kMeshAlgorithmColumns));
+  if (!r.geometry) return;
+  r.geometry->faces_a = get_faces(in);
+  r.geometry->faces_b = get_faces(in);
+  const auto pieces = in.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < pieces; ++i) {
+    KeptPiece& p = r.geometry->pieces.emplace_back();
+    p.decomposition = in.get_string();
+    p.side = in.get<std::int32_t>();
+    p.corners = get_points(in);
+  }
+}
+
 void put_result(ByteWriter& out, const CaseResult& r) {
   put_record(out, r.record, schema::kCaseColumns);
   out.put<std::uint8_t>(r.exact.has_value());
@@ -80,6 +136,7 @@ void put_result(ByteWriter& out, const CaseResult& r) {
     for (const GjkIterationTrace& t : trace)
       put_record(out, schema::flatten(r.record.case_id, t), schema::kTraceColumns);
   }
+  put_mesh(out, r);
 }
 
 CaseResult get_result(ByteReader& in) {
@@ -105,6 +162,7 @@ CaseResult get_result(ByteReader& in) {
       trace.push_back(schema::unflatten(row));
     }
   }
+  get_mesh(in, r);
   return r;
 }
 

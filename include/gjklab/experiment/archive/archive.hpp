@@ -48,6 +48,9 @@ struct ArchiveHeader {
   double touching_band = 1e-10;
   /// Which queries' traces the archive holds (in /traces; stored by name).
   TraceMode trace_mode = TraceMode::none;
+  /// The cases are non-convex pairs (nonconvex families): the archive has a /meshes group, whose
+  /// presence the reader takes this from (no root attribute).
+  bool meshes = false;
 };
 
 /// Writes one archive. Not thread-safe (see above): use it from one thread.

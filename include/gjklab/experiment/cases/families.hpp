@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "gjklab/experiment/cases/records.hpp"
 #include "gjklab/experiment/config/config.hpp"
+#include "gjklab/geometry/triangle_mesh.hpp"
 
 namespace gjklab::experiment {
 
@@ -22,6 +24,9 @@ struct GeneratedCase {
   /// A recorded warm start for the case's queries (`stream` family; empty otherwise), used by
   /// algorithms with warm_start = true.
   std::vector<SimplexVertex> warm;
+  /// A nonconvex family's closed meshes (world frame; a and b are their vertices); empty
+  /// otherwise.
+  std::optional<TriangleMesh> mesh_a, mesh_b;
 };
 
 /// The 32-bit seed of case `case_id`'s GSL generator (gsl_rng_mt19937): the experiment seed is

@@ -86,7 +86,7 @@ enum class ShapeKind : std::uint8_t {
   prism,             ///< triangular prism with its ridge along y at z = 0 (contact families)
   pyramid,           ///< square pyramid with its apex at the origin (contact families)
   from_file,         ///< a cloud read from a cases file
-  mesh,              ///< the vertices of a mesh file (OFF, OBJ, PLY, STL)
+  mesh,              ///< a mesh: a file's vertices (their hull), or a nonconvex family's solid
   sphere,            ///< sphere-swept point: the origin, swept by the case's radius
   capsule,           ///< sphere-swept segment: (±1, 0, 0), swept by the case's radius
   // Parts of the thin contact families (ContactType::crossing_segments and after).
@@ -211,9 +211,51 @@ struct AlgorithmRecord {
   double upper_bound = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Both clouds of a case, kept in the archive when any answer was wrong or not converged.
+/// One convex piece of a kept non-convex case's decomposition (world frame, the corners as
+/// the queries saw them).
+struct KeptPiece {
+  std::string decomposition;  ///< the decomposition's name
+  std::int32_t side = 0;      ///< 0: a piece of A, 1: of B
+  std::vector<Vec3> corners;
+};
+
+/// Both clouds of a case, kept in the archive when any answer was wrong or not converged. For
+/// a non-convex pair the clouds are the meshes' vertices, with their faces and the pieces of
+/// every decomposition the algorithms ran on.
 struct CaseGeometry {
   std::vector<Vec3> a, b;
+  std::vector<std::array<std::uint32_t, 3>> faces_a, faces_b;  ///< empty for convex pairs
+  std::vector<KeptPiece> pieces;                               ///< empty for convex pairs
+};
+
+/// What the exact truth of a non-convex pair adds to its ExactRecord (exact/mesh_truth.hpp).
+struct MeshExactRecord {
+  /// How the truth was decided: separated, triangles_meet, a_inside_b or b_inside_a.
+  std::string contact = "separated";
+  /// The triangles that meet or attain the distance (indices into the faces); −1 for a
+  /// containment.
+  std::int32_t face_a = -1, face_b = -1;
+  /// Triangle pairs evaluated in exact arithmetic (the rest were ruled out by proven bounds).
+  std::uint64_t exact_intersection_tests = 0;
+  std::uint64_t exact_distance_evaluations = 0;
+};
+
+/// What one query on a non-convex pair adds to its AlgorithmRecord.
+struct MeshAlgorithmRecord {
+  /// The pieces of each side's decomposition; 0 for a mesh peer (it answers the meshes).
+  std::int32_t pieces_a = 0, pieces_b = 0;
+  std::uint64_t piece_pairs = 0;         ///< pieces_a · pieces_b
+  std::uint64_t piece_pairs_tested = 0;  ///< the pairs of pieces the algorithm ran on
+  /// The deciding pair of pieces (intersecting, or nearest of those run); −1 when none.
+  std::int32_t piece_a = -1, piece_b = -1;
+  /// A mesh peer's deciding triangles; −1 when it reports none (and for pieces).
+  std::int32_t face_a = -1, face_b = -1;
+};
+
+/// The non-convex part of a case's result (nonconvex families only).
+struct MeshCaseResult {
+  std::optional<MeshExactRecord> exact;       ///< absent when the oracle is off
+  std::vector<MeshAlgorithmRecord> algorithms;  ///< in the experiment's algorithm order
 };
 
 struct CaseResult {
@@ -221,6 +263,8 @@ struct CaseResult {
   std::optional<ExactRecord> exact;         ///< absent when the oracle is off
   std::vector<AlgorithmRecord> algorithms;  ///< in the experiment's algorithm order
   std::optional<CaseGeometry> geometry;     ///< present for failing or degenerate cases
+  /// Pieces, deciding faces and the exact truth's witnesses of a non-convex pair.
+  std::optional<MeshCaseResult> mesh;
   /// Per-iteration traces, one list per algorithm (same order), filled by the trace mode of
   /// the experiment; empty lists for untraced queries and algorithms that cannot be traced.
   std::vector<std::vector<GjkIterationTrace>> traces;

@@ -13,8 +13,11 @@
 #include <vector>
 
 #include "gjklab/exact/oracle.hpp"
-#include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/cases/nonconvex_pairs.hpp"
 #include "gjklab/experiment/cases/records.hpp"
+#include "gjklab/experiment/meshes/decompositions.hpp"
+#include "gjklab/experiment/meshes/mesh_query.hpp"
+#include "gjklab/experiment/registry/algorithms.hpp"
 
 namespace gjklab::experiment {
 
@@ -117,13 +120,26 @@ struct FamilySpec {
   /// The `real_object` family's object names, in the order of `meshes` (its meshes are the
   /// objects' convex hulls at unit size, see real_objects.hpp).
   std::vector<std::string> objects;
+  /// `shape = "nonconvex"`: pairs of closed non-convex meshes of this kind
+  /// (cases/nonconvex_pairs.hpp), queried as solids; the other placement keys do not apply.
+  std::optional<NonconvexPair> nonconvex;
+  /// `pair = "meshes"`: its closed meshes at unit size (`path`, or the packaged ones), with
+  /// their file names in `objects`.
+  std::vector<TriangleMesh> closed_meshes;
 };
 
 /// One algorithm to run, with its options.
 struct AlgorithmSpec {
-  std::string name;   ///< registry name
-  std::string label;  ///< result group name: the name, or "name@key=value" in a sweep
+  std::string name;   ///< registry name (or a mesh peer's, with mesh_peer set)
+  /// result group name: the name, or "name@key=value" in a sweep or for a decomposition
+  std::string label;
   AlgorithmOptions options;
+  /// Experiments of nonconvex families: the decomposition a convex algorithm runs on (null for
+  /// a mesh peer and in convex experiments), with its options.
+  const DecompositionInfo* decomposition = nullptr;
+  DecompositionOptions decomposition_options;
+  /// A mesh peer (fcl-bvh), which answers for the two meshes themselves; null otherwise.
+  const MeshPeerInfo* mesh_peer = nullptr;
 };
 
 /// A sweep of the pair's geometry: every base pair is run once per value, transformed.
@@ -177,6 +193,8 @@ struct ExperimentConfig {
   }
   /// Whether any family has sphere-swept shapes (a radius).
   bool has_swept_shapes() const;
+  /// Whether the families are nonconvex (an experiment's families are all nonconvex or none).
+  bool has_nonconvex_families() const;
   /// Names of the result families (index = CaseRecord::family): the families, or each family
   /// once per geometry-sweep value.
   std::vector<std::string> result_family_names() const;

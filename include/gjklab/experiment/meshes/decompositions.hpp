@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -72,6 +73,11 @@ std::string decomposition_names();
 /// unknown to `d` (listing its keys), unreadable, or out of range.
 void set_decomposition_option(const DecompositionInfo& d, DecompositionOptions& options,
                               std::string_view key, std::string_view value);
+
+/// The decomposition's name ("decomposition") and each of its options' values
+/// ("decomposition.KEY"), as an archive's algorithm group records them.
+std::vector<std::pair<std::string, std::string>> describe_decomposition(
+    const DecompositionInfo& d, const DecompositionOptions& options);
 
 /// The pieces as polytopes, for the queries.
 std::vector<Polytope> piece_polytopes(const Decomposition& d);

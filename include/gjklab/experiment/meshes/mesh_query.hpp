@@ -4,6 +4,7 @@
 // decomposition, how many pieces and how many pairs of them it ran.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -37,15 +38,24 @@ void decompose_side(MeshSide& side, const DecompositionInfo& decomposition, std:
 AnswerFields mesh_answer_fields(const AlgorithmInfo& algorithm, const MeshSide& a,
                                 const MeshSide& b, const AlgorithmOptions& options);
 
+/// A mesh peer's answer: intersect, distance and witnesses where it reports them, and the
+/// deciding triangles (−1 when none).
+struct MeshPeerAnswer {
+  Outcome outcome;
+  std::int64_t face_a = -1, face_b = -1;
+};
+
 /// A peer that answers for two meshes themselves, not for convex pieces: FCL's BVHModel
 /// (`fcl-bvh`, when FCL was built), what robotics code queries non-convex meshes with.
 struct MeshPeerInfo {
   std::string_view name;
   std::string_view description;
-  /// The answer fields: algorithm, intersect, distance, witnesses where there are, and the
-  /// deciding faces.
-  AnswerFields (*run)(const TriangleMesh& a, const TriangleMesh& b);
+  MeshPeerAnswer (*run)(const TriangleMesh& a, const TriangleMesh& b);
 };
+
+/// A mesh peer's answer fields: algorithm, intersect, distance, witnesses where there are, and
+/// the deciding faces.
+AnswerFields mesh_peer_fields(const MeshPeerInfo& peer, const MeshPeerAnswer& answer);
 
 /// Every mesh peer built into this binary.
 std::span<const MeshPeerInfo> mesh_peers();
