@@ -78,7 +78,8 @@ CLI::App* add_hunt_command(CLI::App& app, HuntArgs& args) {
       "hunt", "search an experiment's poses for failures of one algorithm (judged exactly)");
   cmd->add_option("experiment", args.experiment, "experiment file (families and placements)")
       ->required();
-  cmd->add_option("--algorithm", args.algorithm, "the algorithm to hunt (registry name)")
+  cmd->add_option("--algorithm", args.algorithm, "the algorithm to hunt: a registry name, or for nonconvex families the "
+                  "experiment's label (e.g. gjk-johnson@decomposition=hull)")
       ->required();
   cmd->add_option("--queries", args.queries, "the search's budget of judged queries")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
@@ -128,6 +129,12 @@ int run_hunt_command(const HuntArgs& args, std::ostream& out, std::ostream& err)
       ranks = experiment::join_mpi_job();
     const int rank = ranks ? ranks->rank() : 0, size = ranks ? ranks->size() : 1;
     const experiment::ExperimentConfig config = experiment::load_experiment(args.experiment);
+    if (!args.archive.empty() && config.has_nonconvex_families()) {
+      err << "gjklab hunt: --archive archives found convex pairs only; the non-convex pairs "
+             "found are in "
+          << found.string() << " (gjklab query --cases answers them)\n";
+      return 2;
+    }
     experiment::HuntOptions options;
     options.algorithm = args.algorithm;
     options.queries = experiment::rank_queries(args.queries, rank, size);

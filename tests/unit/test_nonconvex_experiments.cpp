@@ -8,7 +8,9 @@
 #include "../../src/experiment/run/result_codec.hpp"
 #include "gjklab/exact/closed_mesh.hpp"
 #include "gjklab/experiment/archive/archive.hpp"
+#include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/experiment/cases/families.hpp"
+#include "gjklab/experiment/hunt/hunt.hpp"
 #include "gjklab/experiment/run/driver.hpp"
 #include "../support/experiment_files.hpp"
 
@@ -254,4 +256,32 @@ name = "gjk-bool"
     if (a.results[i].geometry)
       CHECK(sent[i].geometry->pieces.size() == a.results[i].geometry->pieces.size());
   }
+}
+
+TEST_CASE("hunting poses where a decomposition is wrong", "[unit][meshes][hunt]") {
+  const ExperimentConfig ls = parse(nonconvex_experiment("l-in-l", kJohnsonOnThree, 16));
+  HuntOptions options;
+  options.algorithm = "gjk-johnson@decomposition=hull";
+  options.queries = 24;
+  options.random_baseline = false;
+  const HuntReport hull = hunt(ls, options);
+  REQUIRE(!hull.found.empty());
+  for (const FoundCase& f : hull.found) {
+    // Each found pose is a pair of solids apart whose hulls meet.
+    REQUIRE(f.points.mesh_a);
+    REQUIRE(f.points.mesh_b);
+    CHECK_FALSE(f.exact.intersect);
+    CHECK(f.exact.method == exact::AnswerMethod::mesh_truth);
+    CHECK(f.answer_intersect);
+    const exact::MeshTruth again = exact::mesh_truth(*f.points.mesh_a, *f.points.mesh_b);
+    CHECK(again.distance_squared == f.exact.distance_squared);
+    const std::string line = found_case_line(f, hull);
+    CHECK(line.find("\"faces\"") != std::string::npos);
+  }
+  options.algorithm = "gjk-johnson@decomposition=exact";
+  options.queries = 8;
+  CHECK(hunt(ls, options).found.empty());
+  options.algorithm = "gjk-epa";
+  CHECK_THROWS_WITH(hunt(ls, options), Catch::Contains("lists no algorithm 'gjk-epa'") &&
+                                           Catch::Contains("gjk-johnson@decomposition=hull"));
 }

@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "gjklab/exact/closed_mesh.hpp"
+#include "gjklab/experiment/meshes/mesh_cases.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
 #include "gjklab/experiment/registry/certified.hpp"
 #include "gjklab/experiment/cases/families.hpp"
@@ -51,6 +54,8 @@ static_assert(in_value_order(kObjectiveMeanings) &&
 struct Pair {
   std::vector<Vec3> a, b;
   SweptRadii radii;
+  /// A non-convex pair's triangles (a and b are the meshes' vertices); empty for polytopes.
+  std::vector<MeshFace> faces_a, faces_b;
 };
 
 /// A restart's base case: the pair, its size, and its placement along the axis u (B moved so
@@ -90,11 +95,44 @@ bool falsely_converged(const Outcome& o, const AlgorithmRecord& r, double exact_
   return !r.boolean_correct || (!std::isnan(r.rel_error) && r.rel_error > band);
 }
 
-/// The algorithm, its options and the objective, applied to a pair.
+/// A query's answer on a pair, with the exact answer judging it.
+struct Answered {
+  Outcome outcome;
+  exact::OracleAnswer exact;
+  ExactRecord record;
+  double size = 0;
+};
+
+/// The experiment's algorithm the hunt names: its label (as a nonconvex experiment's lists
+/// name@decomposition=NAME) or its registry name, first match; null when it lists none.
+const AlgorithmSpec* listed_spec(const ExperimentConfig& config, const std::string& name) {
+  for (const AlgorithmSpec& spec : config.algorithms)
+    if (spec.label == name) return &spec;
+  for (const AlgorithmSpec& spec : config.algorithms)
+    if (spec.name == name) return &spec;
+  return nullptr;
+}
+
+/// The algorithm, its options and the objective, applied to a pair. On the non-convex pairs of
+/// nonconvex families the algorithm is the experiment's (with its decomposition, or a mesh
+/// peer) and the truth is the solids' (exact::mesh_truth).
 class Judge {
  public:
   Judge(const ExperimentConfig& config, const HuntOptions& options)
       : config_(config), objective_(options.objective) {
+    if (config.has_nonconvex_families()) {
+      spec_ = listed_spec(config, options.algorithm);
+      if (!spec_) {
+        std::string labels;
+        for (const AlgorithmSpec& s : config.algorithms)
+          labels += (labels.empty() ? "" : ", ") + s.label;
+        throw std::invalid_argument("the experiment lists no algorithm '" + options.algorithm +
+                                    "' (its non-convex pairs are queried as it lists them, with "
+                                    "their decompositions); valid: " +
+                                    labels);
+      }
+      return;
+    }
     algorithm_ = find_algorithm(options.algorithm);
     if (!algorithm_)
       throw std::invalid_argument("unknown algorithm '" + options.algorithm +
@@ -108,25 +146,61 @@ class Judge {
       }
   }
 
-  const AlgorithmInfo& algorithm() const { return *algorithm_; }
-  bool handles_pair(const Pair& p) const { return handles(*algorithm_, p.radii); }
+  bool handles_pair(const Pair& p) const { return spec_ || handles(*algorithm_, p.radii); }
 
   /// Judges the pair; `contact_target` (log10 of distance or depth over size) is where the
   /// search of a yes/no objective is drawn while it has found no failure.
   Judged operator()(const Pair& p, double contact_target) const {
     Judged j;
-    if (!describe_invalid_cloud(p.a).empty() || !describe_invalid_cloud(p.b).empty()) return j;
-    const Polytope a(p.a), b(p.b);
-    const double size = pair_size(p.a, p.b, p.radii.a, p.radii.b);
-    if (!(size > 0) || !std::isfinite(size)) return j;
+    const std::optional<Answered> a = spec_ ? answer_meshes(p) : answer_polytopes(p);
+    if (!a) return j;
     j.valid = true;
-    j.outcome = run_algorithm(*algorithm_, a, b, p.radii, options_);
-    j.exact = solve_certified(a, b, p.radii, config_.oracle_options(true)).answer;
-    const ExactRecord exact = exact_record(j.exact, config_.touching_band * size);
+    j.outcome = a->outcome;
+    j.exact = a->exact;
     AlgorithmRecord r = algorithm_record(j.outcome);
-    judge(r, j.outcome, exact, size);
+    judge(r, j.outcome, a->record, a->size);
     j.relative_error = r.rel_error;
-    const double closeness = -std::abs(contact_scale(j.exact, size) - contact_target);
+    score(j, r, -std::abs(contact_scale(j.exact, a->size) - contact_target));
+    return j;
+  }
+
+ private:
+  std::optional<Answered> answer_polytopes(const Pair& p) const {
+    if (!describe_invalid_cloud(p.a).empty() || !describe_invalid_cloud(p.b).empty())
+      return std::nullopt;
+    const Polytope a(p.a), b(p.b);
+    Answered out;
+    out.size = pair_size(p.a, p.b, p.radii.a, p.radii.b);
+    if (!(out.size > 0) || !std::isfinite(out.size)) return std::nullopt;
+    out.outcome = run_algorithm(*algorithm_, a, b, p.radii, options_);
+    out.exact = solve_certified(a, b, p.radii, config_.oracle_options(true)).answer;
+    out.record = exact_record(out.exact, config_.touching_band * out.size);
+    return out;
+  }
+
+  /// A pose that no longer bounds solids (rounding made the surface cross itself) is invalid.
+  std::optional<Answered> answer_meshes(const Pair& p) const {
+    const TriangleMesh a{p.a, p.faces_a}, b{p.b, p.faces_b};
+    Answered out;
+    out.size = pair_size(p.a, p.b, 0, 0);
+    if (!(out.size > 0) || !std::isfinite(out.size)) return std::nullopt;
+    try {
+      exact::validate_closed_mesh(a, "mesh A");
+      exact::validate_closed_mesh(b, "mesh B");
+    } catch (const std::runtime_error&) {
+      return std::nullopt;
+    }
+    const MeshTruthRecords truth =
+        mesh_truth_records(exact::mesh_truth(a, b), config_.touching_band * out.size);
+    out.exact = truth.answer;
+    out.record = truth.exact;
+    out.outcome = run_mesh_algorithm(*spec_, a, b, "a hunted pose");
+    return out;
+  }
+
+  /// The objective's value, failure and score of a judged query; `closeness` ranks the
+  /// non-failures of yes/no objectives by nearness to the contact target.
+  void score(Judged& j, const AlgorithmRecord& r, double closeness) const {
     switch (objective_) {
       case HuntObjective::wrong_boolean:
         j.failure = !r.boolean_correct;
@@ -155,10 +229,8 @@ class Judge {
         j.score = j.failure ? kFailureScore : closeness;
         break;
     }
-    return j;
   }
 
- private:
   /// log10 of the exact distance (separated) or depth (intersecting) over size; −400 for 0.
   static double contact_scale(const exact::OracleAnswer& e, double size) {
     const double measure = e.intersect ? e.depth.value_or(0.0) : e.distance;
@@ -167,8 +239,9 @@ class Judge {
 
   const ExperimentConfig& config_;
   HuntObjective objective_;
-  const AlgorithmInfo* algorithm_ = nullptr;
+  const AlgorithmInfo* algorithm_ = nullptr;  ///< polytope pairs
   AlgorithmOptions options_;
+  const AlgorithmSpec* spec_ = nullptr;  ///< non-convex pairs
 };
 
 /// The pose of B relative to its case: rotation vector (radians), translation (units of the
@@ -240,7 +313,9 @@ Pair shrink(Pair p, const Judge& judge, double target, int budget, std::uint64_t
     const Judged j = judge(candidate, target);
     return j.valid && j.failure;
   };
+  // A mesh's vertex cannot be removed without its faces: meshes are only rounded.
   for (std::vector<Vec3>* cloud : {&p.a, &p.b}) {
+    if (!p.faces_a.empty()) break;
     for (std::size_t i = cloud->size(); i-- > 0 && cloud->size() > 1;) {
       Pair candidate = p;
       std::vector<Vec3>& c = cloud == &p.a ? candidate.a : candidate.b;
@@ -268,11 +343,17 @@ double draw_contact_target(const ExperimentConfig& config, std::mt19937_64& rng)
 }
 
 Pair pair_of(const GeneratedCase& g) {
-  return {g.a, g.b, {g.record.radius_a, g.record.radius_b}};
+  Pair p{g.a, g.b, {g.record.radius_a, g.record.radius_b}, {}, {}};
+  if (g.mesh_a) p.faces_a = g.mesh_a->faces;
+  if (g.mesh_b) p.faces_b = g.mesh_b->faces;
+  return p;
 }
 
 BaseCase base_of(const GeneratedCase& g) {
-  return {pair_of(g), g.record.size, g.direction, g.record.intended_gap};
+  // A pair placed without a drawn gap (NaN: random placement, non-convex pairs) has none to
+  // scale.
+  const double gap = std::isnan(g.record.intended_gap) ? 0.0 : g.record.intended_gap;
+  return {pair_of(g), g.record.size, g.direction, gap};
 }
 
 /// One restart: a (1+1) evolution strategy from the base case until a failure or the budget.
@@ -327,6 +408,10 @@ FoundCase found_case(const Pair& p, const Judged& j, std::uint64_t base_case, st
   f.points.b = p.b;
   f.points.radius_a = p.radii.a;
   f.points.radius_b = p.radii.b;
+  if (!p.faces_a.empty()) {
+    f.points.mesh_a = TriangleMesh{p.a, p.faces_a};
+    f.points.mesh_b = TriangleMesh{p.b, p.faces_b};
+  }
   f.objective_value = j.objective_value;
   f.base_case = base_case;
   f.query = query;
@@ -418,10 +503,18 @@ std::string found_case_line(const FoundCase& f, const HuntReport& report) {
       arr.push_back({p.x(), p.y(), p.z()});
     return arr;
   };
+  // A mesh side is {"vertices", "faces"}, as `gjklab query --cases` reads it.
+  auto side = [&](const std::vector<Vec3>& pts, const std::optional<TriangleMesh>& mesh) {
+    if (!mesh) return cloud(pts);
+    nlohmann::ordered_json faces = nlohmann::ordered_json::array();
+    for (const MeshFace& face : mesh->faces)
+      faces.push_back({face[0], face[1], face[2]});
+    return nlohmann::ordered_json{{"vertices", cloud(mesh->vertices)}, {"faces", faces}};
+  };
   nlohmann::ordered_json j;
   j["id"] = f.points.id;
-  j["a"] = cloud(f.points.a);
-  j["b"] = cloud(f.points.b);
+  j["a"] = side(f.points.a, f.points.mesh_a);
+  j["b"] = side(f.points.b, f.points.mesh_b);
   if (f.points.radius_a != 0) j["radius_a"] = f.points.radius_a;
   if (f.points.radius_b != 0) j["radius_b"] = f.points.radius_b;
   nlohmann::ordered_json by;

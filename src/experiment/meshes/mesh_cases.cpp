@@ -115,27 +115,6 @@ double time_mesh_query(const AlgorithmSpec& spec, const GeneratedCase& c,
   return ns[ns.size() / 2];
 }
 
-/// The solids' truth as the archive's exact record (no depth: see the header).
-std::pair<ExactRecord, MeshExactRecord> truth_records(const exact::MeshTruth& t, double band) {
-  ExactRecord r;
-  r.intersect = t.intersect;
-  r.distance = t.distance;
-  r.distance2_num = t.distance_squared.numerator();
-  r.distance2_den = t.distance_squared.denominator();
-  r.hull_vertices_a = r.hull_vertices_b = -1;
-  r.contact = t.intersect         ? ContactClass::intersecting
-              : t.distance <= band ? ContactClass::touching_band
-                                   : ContactClass::separated;
-  r.method = exact::AnswerMethod::mesh_truth;
-  MeshExactRecord m;
-  m.contact = std::string(to_string(t.contact));
-  m.face_a = static_cast<std::int32_t>(t.face_a);
-  m.face_b = static_cast<std::int32_t>(t.face_b);
-  m.exact_intersection_tests = t.exact_intersection_tests;
-  m.exact_distance_evaluations = t.exact_distance_evaluations;
-  return {r, m};
-}
-
 }  // namespace
 
 CaseResult evaluate_mesh_case(const ExperimentConfig& config, GeneratedCase generated) {
@@ -144,11 +123,10 @@ CaseResult evaluate_mesh_case(const ExperimentConfig& config, GeneratedCase gene
   MeshCaseResult& mesh = result.mesh.emplace();
   const double size = generated.record.size;
   if (config.oracle) {
-    const auto [exact_record, mesh_record] =
-        truth_records(exact::mesh_truth(*generated.mesh_a, *generated.mesh_b),
-                      config.touching_band * size);
-    result.exact = exact_record;
-    mesh.exact = mesh_record;
+    const MeshTruthRecords truth = mesh_truth_records(
+        exact::mesh_truth(*generated.mesh_a, *generated.mesh_b), config.touching_band * size);
+    result.exact = truth.exact;
+    mesh.exact = truth.mesh;
   }
   CaseDecompositions decompositions(generated);
   for (const AlgorithmSpec& spec : config.algorithms) {
@@ -175,6 +153,54 @@ CaseResult evaluate_mesh_case(const ExperimentConfig& config, GeneratedCase gene
     g.pieces = decompositions.kept();
   }
   return result;
+}
+
+}  // namespace gjklab::experiment
+
+namespace gjklab::experiment {
+
+MeshTruthRecords mesh_truth_records(const exact::MeshTruth& t, double band) {
+  MeshTruthRecords out;
+  out.answer.intersect = t.intersect;
+  out.answer.distance_squared = t.distance_squared;
+  out.answer.distance = t.distance;
+  out.answer.hull_vertices_a = out.answer.hull_vertices_b = -1;
+  out.answer.method = exact::AnswerMethod::mesh_truth;
+  ExactRecord& r = out.exact;
+  r.intersect = t.intersect;
+  r.distance = t.distance;
+  r.distance2_num = t.distance_squared.numerator();
+  r.distance2_den = t.distance_squared.denominator();
+  r.hull_vertices_a = r.hull_vertices_b = -1;
+  r.contact = t.intersect         ? ContactClass::intersecting
+              : t.distance <= band ? ContactClass::touching_band
+                                   : ContactClass::separated;
+  r.method = exact::AnswerMethod::mesh_truth;
+  MeshExactRecord& m = out.mesh;
+  m.contact = std::string(to_string(t.contact));
+  m.face_a = static_cast<std::int32_t>(t.face_a);
+  m.face_b = static_cast<std::int32_t>(t.face_b);
+  m.exact_intersection_tests = t.exact_intersection_tests;
+  m.exact_distance_evaluations = t.exact_distance_evaluations;
+  return out;
+}
+
+Outcome run_mesh_algorithm(const AlgorithmSpec& spec, const TriangleMesh& a, const TriangleMesh& b,
+                           const std::string& source) {
+  if (spec.mesh_peer) return spec.mesh_peer->run(a, b).outcome;
+  std::array<std::vector<Polytope>, 2> pieces;
+  const TriangleMesh* meshes[] = {&a, &b};
+  for (int side = 0; side < 2; ++side) {
+    const std::string name = source + ", mesh " + (side == 0 ? "A" : "B");
+    try {
+      pieces[side] = piece_polytopes(
+          spec.decomposition->decompose(*meshes[side], name, spec.decomposition_options));
+    } catch (const std::exception& error) {
+      throw std::runtime_error(name + ": decomposition '" + std::string(spec.decomposition->name) +
+                               "' failed: " + error.what());
+    }
+  }
+  return run_on_pieces(*find_algorithm(spec.name), pieces[0], pieces[1], spec.options).outcome;
 }
 
 }  // namespace gjklab::experiment

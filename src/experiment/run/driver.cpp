@@ -247,8 +247,11 @@ CaseResult evaluate_case(const ExperimentConfig& config, std::uint64_t case_id) 
       result.traces[i] = std::move(recorder.iterations);
     }
   }
-  if (worth_keeping(result, config.touching_band))
-    result.geometry = CaseGeometry{std::move(generated.a), std::move(generated.b)};
+  if (worth_keeping(result, config.touching_band)) {
+    result.geometry.emplace();
+    result.geometry->a = std::move(generated.a);
+    result.geometry->b = std::move(generated.b);
+  }
   return result;
 }
 

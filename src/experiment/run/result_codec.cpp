@@ -148,7 +148,9 @@ CaseResult get_result(ByteReader& in) {
     r.algorithms.push_back(get_record(in, schema::kAlgorithmColumns));
   if (in.get<std::uint8_t>()) {
     std::vector<Vec3> a = get_points(in);
-    r.geometry = CaseGeometry{std::move(a), get_points(in)};
+    r.geometry.emplace();
+    r.geometry->a = std::move(a);
+    r.geometry->b = get_points(in);
   }
   const auto traces = in.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < traces; ++i) {

@@ -10,6 +10,9 @@
 // "apart" counts as a wrong boolean.
 #pragma once
 
+#include <string>
+
+#include "gjklab/exact/mesh_truth.hpp"
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/cases/records.hpp"
 #include "gjklab/experiment/config/config.hpp"
@@ -19,5 +22,20 @@ namespace gjklab::experiment {
 /// The case's result (its meshes are generated.mesh_a and mesh_b). Throws std::runtime_error
 /// naming the case, the side and the decomposition when a decomposition fails.
 CaseResult evaluate_mesh_case(const ExperimentConfig& config, GeneratedCase generated);
+
+/// The solids' truth as an exact answer and its archive records (contact class with the
+/// absolute band `band`, length units; no depth).
+struct MeshTruthRecords {
+  exact::OracleAnswer answer;  ///< intersect, distance, distance_squared; method mesh_truth
+  ExactRecord exact;
+  MeshExactRecord mesh;
+};
+MeshTruthRecords mesh_truth_records(const exact::MeshTruth& truth, double band);
+
+/// One algorithm of the experiment on two meshes: a convex algorithm over the pieces of its
+/// decomposition (both sides decomposed here; `source` names the pair in errors), a mesh peer
+/// on the meshes. Throws std::runtime_error when a decomposition fails.
+Outcome run_mesh_algorithm(const AlgorithmSpec& spec, const TriangleMesh& a, const TriangleMesh& b,
+                           const std::string& source);
 
 }  // namespace gjklab::experiment
