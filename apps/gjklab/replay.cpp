@@ -13,6 +13,7 @@
 #include "gjklab/experiment/config/config.hpp"
 #include "gjklab/experiment/registry/algorithm_options.hpp"
 #include "gjklab/experiment/registry/algorithms.hpp"
+#include "gjklab/experiment/run/driver.hpp"
 
 namespace gjklab::cli {
 
@@ -38,7 +39,10 @@ experiment::CaseGeometry case_geometry(const experiment::Archive& archive, const
   const experiment::ExperimentConfig config =
       experiment::parse_experiment(archive.header.experiment_text, file + " (archived experiment)");
   experiment::GeneratedCase g = experiment::generate_case(config, c.record.case_id);
-  return {std::move(g.a), std::move(g.b)};
+  experiment::CaseGeometry geometry;
+  geometry.a = std::move(g.a);
+  geometry.b = std::move(g.b);
+  return geometry;
 }
 
 /// The case's recorded warm start (`stream` family), regenerated from the archived experiment
@@ -99,6 +103,55 @@ std::string differences(const experiment::Outcome& now, const AlgorithmRecord& t
   return d;
 }
 
+/// The differences between a rerun's record and the archived one ("" when equal).
+std::string differences(const AlgorithmRecord& now, const AlgorithmRecord& then) {
+  experiment::Outcome o;
+  o.intersect = now.intersect;
+  if (!std::isnan(now.distance)) o.distance = now.distance;
+  o.iterations = now.iterations;
+  o.termination = now.termination;
+  return differences(o, then);
+}
+
+/// A non-convex pair (nonconvex families): the case regenerated from the archived experiment
+/// and evaluated again, truth, decompositions and queries, each answer compared with the
+/// archive's. Returns the exit status.
+int replay_mesh_case(const experiment::Archive& archive, const CaseResult& then,
+                     const ReplayArgs& args, std::ostream& out, std::ostream& err) {
+  experiment::ExperimentConfig config = experiment::parse_experiment(
+      archive.header.experiment_text, args.archive + " (archived experiment)");
+  config.timing = false;
+  const CaseResult now = experiment::evaluate_case(config, then.record.case_id);
+  const auto& h = archive.header;
+  bool all_equal = true, any = false;
+  for (std::size_t k = 0; k < h.algorithm_names.size() && k < now.algorithms.size(); ++k) {
+    const std::string& label = h.algorithm_names[k];
+    if (!args.algorithm.empty() && args.algorithm != label) continue;
+    any = true;
+    const AlgorithmRecord& r = now.algorithms[k];
+    out << label << ": intersect " << r.intersect;
+    if (!std::isnan(r.distance)) out << ", distance " << fmt("%.17g", r.distance);
+    const experiment::MeshAlgorithmRecord& m = now.mesh->algorithms[k];
+    if (m.pieces_a > 0)
+      out << ", " << r.iterations << " iterations over " << m.piece_pairs_tested << " of "
+          << m.piece_pairs << " piece pairs";
+    else
+      out << ", on the meshes";
+    out << ", " << to_string(r.termination) << ", failure class "
+        << to_string(then.algorithms[k].failure) << "\n";
+    if (args.trace) out << "    (no trace: a non-convex pair's query runs over many pairs of pieces)\n";
+    const std::string d = differences(r, then.algorithms[k]);
+    out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)
+        << "\n";
+    all_equal = all_equal && d.empty();
+  }
+  if (!any) {
+    err << "gjklab replay: no algorithm '" << args.algorithm << "' in " << args.archive << "\n";
+    return 1;
+  }
+  return all_equal ? 0 : 1;
+}
+
 }  // namespace
 
 CLI::App* add_replay_command(CLI::App& app, ReplayArgs& args) {
@@ -133,6 +186,17 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
       err << "gjklab replay: " << args.archive << ": no case " << args.case_id
           << " (the archive has " << archive.results.size() << " cases)\n";
       return 1;
+    }
+    if (h.meshes) {
+      const auto& rec = found->record;
+      out << "case " << rec.case_id << " of " << args.archive << ": family '"
+          << (rec.family < h.family_names.size() ? h.family_names[rec.family] : "?")
+          << "', meshes of " << rec.vertices_a << " + " << rec.vertices_b << " vertices\n";
+      if (found->exact)
+        out << "exact: intersect " << found->exact->intersect << ", distance "
+            << fmt("%.17g", found->exact->distance) << " ("
+            << (found->mesh && found->mesh->exact ? found->mesh->exact->contact : "?") << ")\n";
+      return replay_mesh_case(archive, *found, args, out, err);
     }
     const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
     const Polytope a(geometry.a), b(geometry.b);

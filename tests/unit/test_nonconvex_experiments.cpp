@@ -12,6 +12,7 @@
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/hunt/hunt.hpp"
 #include "gjklab/experiment/run/driver.hpp"
+#include "../support/cli_run.hpp"
 #include "../support/experiment_files.hpp"
 
 using namespace gjklab;
@@ -241,6 +242,15 @@ name = "gjk-bool"
     kept += a.results[i].geometry.has_value();
   }
   CHECK(kept > 0);
+  // gjklab replay regenerates a case and finds every answer as archived.
+  for (const char* id : {"0", "5"}) {
+    const gjklab::testing::CliResult replayed =
+        gjklab::testing::run_cli({"replay", *whole.output, "--case", id});
+    INFO(replayed.out << replayed.err);
+    CHECK(replayed.status == 0);
+    CHECK(replayed.out.find("gjk-johnson@decomposition=exact: intersect") != std::string::npos);
+    CHECK(replayed.out.find("DIFFERS") == std::string::npos);
+  }
   // The message of a distributed run carries the same.
   codec::ByteWriter out;
   codec::encode_results(out, a.results);
