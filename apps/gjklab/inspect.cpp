@@ -1,6 +1,7 @@
 #include "gjklab/inspect.hpp"
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -77,6 +78,17 @@ void print_provenance(std::ostream& out, const std::string& path,
 }
 
 /// The text form: provenance, the summary with its lists, per family, the oracle's methods.
+/// Non-convex pairs: how the solids' truth was decided, over the cases.
+void print_mesh_truth(std::ostream& out, const experiment::Archive& archive) {
+  std::map<std::string, std::uint64_t> decided;
+  for (const experiment::CaseResult& r : archive.results)
+    if (r.mesh && r.mesh->exact) ++decided[r.mesh->exact->contact];
+  out << "\nexact answers (the solids' truth: triangles that meet, containment, or the least "
+         "exact triangle distance):\n";
+  for (const auto& [contact, count] : decided)
+    out << "  " << contact << ": " << count << "\n";
+}
+
 void print_text(std::ostream& out, const std::string& path, const experiment::Archive& archive,
                 const Summaries& s) {
   print_provenance(out, path, archive);
@@ -86,7 +98,9 @@ void print_text(std::ostream& out, const std::string& path, const experiment::Ar
     experiment::print_family_table(out, s.families);
   }
   out << s.kept << " cases keep their geometry (wrong or not converged)\n";
-  if (archive.header.oracle) {
+  if (archive.header.oracle && archive.header.meshes) {
+    print_mesh_truth(out, archive);
+  } else if (archive.header.oracle) {
     out << "\nexact answers (certified, or by the QP):\n";
     experiment::print_oracle_methods(
         out, experiment::oracle_method_counts(archive.results, archive.header.family_names));

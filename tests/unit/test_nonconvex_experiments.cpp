@@ -124,6 +124,14 @@ TEST_CASE("nonconvex experiments: what does not apply is an error naming the key
                                           "decomposition_options = { concavity = 5 }\n")),
       Catch::Contains("algorithm[0].decomposition_options") &&
           Catch::Contains("takes options"));
+  // A mesh that does not bound a solid names its file (and is never repaired).
+  const ExperimentFolder folder("nonconvex-bad-mesh");
+  folder.write("open.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
+  CHECK_THROWS_WITH(
+      gjklab::experiment::parse_experiment(
+          nonconvex_experiment("meshes\"\npath = \"" + folder.path.string(), johnson),
+          (folder.path / "exp.toml").string()),
+      Catch::Contains("family[0].path") && Catch::Contains("open.off"));
   // The same keys in a convex experiment.
   const std::string convex = "name = \"c\"\nseed = 1\ncases = 2\n[[family]]\nshape = \"box\"\n";
   CHECK_THROWS_WITH(parse(convex + johnson + "decomposition = \"hull\"\n"),
