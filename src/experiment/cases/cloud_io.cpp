@@ -395,21 +395,10 @@ std::vector<CaseOrError> read_cases_file(const std::filesystem::path& path) {
 }
 
 std::string case_to_json_line(const PointCase& c) {
-  auto cloud = [](const std::vector<Vec3>& pts) {
-    nlohmann::json arr = nlohmann::json::array();
-    for (const Vec3& p : pts)
-      arr.push_back({p.x(), p.y(), p.z()});
-    return arr;
-  };
-  auto side = [&](const std::vector<Vec3>& pts, const std::optional<TriangleMesh>& mesh) {
-    if (!mesh) return cloud(pts);
-    nlohmann::json faces = nlohmann::json::array();
-    for (const MeshFace& f : mesh->faces)
-      faces.push_back({f[0], f[1], f[2]});
-    return nlohmann::json{{"vertices", cloud(mesh->vertices)}, {"faces", faces}};
-  };
   // nlohmann writes the shortest decimal that reads back as the same double.
-  nlohmann::json j{{"id", c.id}, {"a", side(c.a, c.mesh_a)}, {"b", side(c.b, c.mesh_b)}};
+  nlohmann::json j{{"id", c.id},
+                   {"a", case_side_json<nlohmann::json>(c.a, c.mesh_a)},
+                   {"b", case_side_json<nlohmann::json>(c.b, c.mesh_b)}};
   if (c.radius_a != 0) j["radius_a"] = c.radius_a;
   if (c.radius_b != 0) j["radius_b"] = c.radius_b;
   return json_line(j);

@@ -497,24 +497,10 @@ HuntReport hunt(const ExperimentConfig& config, const HuntOptions& options) {
 }
 
 std::string found_case_line(const FoundCase& f, const HuntReport& report) {
-  auto cloud = [](const std::vector<Vec3>& pts) {
-    nlohmann::ordered_json arr = nlohmann::ordered_json::array();
-    for (const Vec3& p : pts)
-      arr.push_back({p.x(), p.y(), p.z()});
-    return arr;
-  };
-  // A mesh side is {"vertices", "faces"}, as `gjklab query --cases` reads it.
-  auto side = [&](const std::vector<Vec3>& pts, const std::optional<TriangleMesh>& mesh) {
-    if (!mesh) return cloud(pts);
-    nlohmann::ordered_json faces = nlohmann::ordered_json::array();
-    for (const MeshFace& face : mesh->faces)
-      faces.push_back({face[0], face[1], face[2]});
-    return nlohmann::ordered_json{{"vertices", cloud(mesh->vertices)}, {"faces", faces}};
-  };
   nlohmann::ordered_json j;
   j["id"] = f.points.id;
-  j["a"] = side(f.points.a, f.points.mesh_a);
-  j["b"] = side(f.points.b, f.points.mesh_b);
+  j["a"] = case_side_json<nlohmann::ordered_json>(f.points.a, f.points.mesh_a);
+  j["b"] = case_side_json<nlohmann::ordered_json>(f.points.b, f.points.mesh_b);
   if (f.points.radius_a != 0) j["radius_a"] = f.points.radius_a;
   if (f.points.radius_b != 0) j["radius_b"] = f.points.radius_b;
   nlohmann::ordered_json by;

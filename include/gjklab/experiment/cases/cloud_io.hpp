@@ -93,6 +93,23 @@ inline constexpr int kMaxJsonDepth = 32;
 /// One JSON value as one output line, safe for any bytes: strings that are not valid UTF-8
 /// (a case id or a file name read from disk) have each invalid byte replaced by U+FFFD rather
 /// than making the whole line, and the program, fail.
+/// One side of a cases line: the cloud as [[x, y, z], …], or a mesh as {"vertices", "faces"}
+/// (Json: nlohmann::json or nlohmann::ordered_json).
+template <class Json>
+Json case_side_json(const std::vector<Vec3>& cloud, const std::optional<TriangleMesh>& mesh) {
+  auto points = [](const std::vector<Vec3>& pts) {
+    Json arr = Json::array();
+    for (const Vec3& p : pts)
+      arr.push_back({p.x(), p.y(), p.z()});
+    return arr;
+  };
+  if (!mesh) return points(cloud);
+  Json faces = Json::array();
+  for (const MeshFace& f : mesh->faces)
+    faces.push_back({f[0], f[1], f[2]});
+  return Json{{"vertices", points(mesh->vertices)}, {"faces", faces}};
+}
+
 std::string json_line(const nlohmann::json& j);
 std::string json_line(const nlohmann::ordered_json& j);  ///< keys in insertion order
 
