@@ -511,7 +511,7 @@ std::span<const FamilyShapeInfo> family_shapes() {
        "at unit size"},
       {"nonconvex",
        "pairs of closed non-convex meshes queried as solids (pair: rings, peg-in-hole, "
-       "ball-in-cup, l-in-l, stars, nested, meshes)"},
+       "ball-in-cup, l-in-l, stars, nested, box-in-notch, meshes)"},
   };
   static const std::vector<FamilyShapeInfo> shapes = [] {
     std::vector<FamilyShapeInfo> out;

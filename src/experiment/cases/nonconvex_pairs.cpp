@@ -144,6 +144,14 @@ MeshPair nested(gsl_rng* r) {
   return {ball(1.0), posed(std::move(small), turn, uniform_box(r, 0.85))};
 }
 
+MeshPair box_in_notch(gsl_rng* r) {
+  const bool overlapping = uniform(r) < 0.5;
+  const double gap = log_uniform(r, Interval{1e-12, 0.25}) * (overlapping ? -1 : 1);
+  const double lo = 1 + gap, hi = lo + 0.5;
+  const std::vector<PlanePoint> square = {{lo, lo}, {hi, lo}, {hi, hi}, {lo, hi}};
+  return {l_prism(), prism_mesh(square, 0.25, 0.75)};
+}
+
 MeshPair two_meshes(gsl_rng* r, std::span<const TriangleMesh> meshes) {
   if (meshes.empty()) throw std::invalid_argument("a `meshes` pair needs at least one mesh");
   const TriangleMesh& a = meshes[gsl_rng_uniform_int(r, meshes.size())];
@@ -184,6 +192,7 @@ MeshPair draw_nonconvex_pair(NonconvexPair kind, std::span<const TriangleMesh> m
     case NonconvexPair::l_in_l: return l_in_l(r);
     case NonconvexPair::stars: return stars(r);
     case NonconvexPair::nested: return nested(r);
+    case NonconvexPair::box_in_notch: return box_in_notch(r);
     case NonconvexPair::meshes: return two_meshes(r, meshes);
   }
   throw std::invalid_argument("unknown nonconvex pair");

@@ -32,6 +32,10 @@ enum class NonconvexPair : std::uint8_t {
   l_in_l,       ///< an L prism in the notch of another L turned by a half turn
   stars,        ///< two star-shaped non-convex meshes (radii 0.45–1), centres 0.9–1.9 apart
   nested,       ///< a small star (size 0.3) inside a ball of radius 1, or through its surface
+  /// a cube (side 0.5) in an L prism's notch at an exact gap g from both inner walls (the
+  /// distance is g to rounding of 1 + g; |g| log-uniform in [1e-12, 0.25], half of the cases
+  /// overlapping by |g|), axis-aligned: inside the L's hull, so the hull says "intersect"
+  box_in_notch,
   meshes,       ///< two closed meshes of the family's list, turned at random, centres 0.6–1.8 apart
 };
 
@@ -42,6 +46,7 @@ inline constexpr auto kNonconvexPairNames = std::to_array<EnumName<NonconvexPair
     {NonconvexPair::l_in_l, "l-in-l"},
     {NonconvexPair::stars, "stars"},
     {NonconvexPair::nested, "nested"},
+    {NonconvexPair::box_in_notch, "box-in-notch"},
     {NonconvexPair::meshes, "meshes"},
 });
 static_assert(in_value_order(kNonconvexPairNames) &&
