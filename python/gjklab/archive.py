@@ -21,6 +21,10 @@ class Archive:
     algorithms: dict = field(default_factory=dict)  # group name -> DataFrame
     attrs: dict = field(default_factory=dict)  # root attributes: provenance, experiment, ...
     complete: bool = False
+    # Nonconvex families only (/meshes): how each case's truth was decided, and per algorithm
+    # group the pieces and piece pairs its queries ran on.
+    mesh_exact: "pd.DataFrame | None" = None
+    mesh_algorithms: dict = field(default_factory=dict)  # group name -> DataFrame
 
 
 def _text(value):
@@ -71,5 +75,9 @@ def read_archive(path):
                                                         categories=family_names)
         exact = _frame(f["exact"], rows) if "exact" in f else None
         algorithms = {name: _frame(group, rows) for name, group in f["algorithms"].items()}
+        mesh_exact = _frame(f["meshes/exact"], rows) if "meshes/exact" in f else None
+        mesh_algorithms = ({name: _frame(group, rows)
+                            for name, group in f["meshes/algorithms"].items()}
+                           if "meshes/algorithms" in f else {})
     return Archive(cases=cases, exact=exact, algorithms=algorithms, attrs=attrs,
-                   complete=complete)
+                   complete=complete, mesh_exact=mesh_exact, mesh_algorithms=mesh_algorithms)

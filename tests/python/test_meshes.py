@@ -148,3 +148,25 @@ def test_query_mesh_takes_the_mesh_peer_as_the_command_line_does():
     fcl, exact = gjklab.query_mesh(l, notch, ["fcl-bvh", "exact"])
     assert fcl["algorithm"] == "fcl-bvh" and not fcl["intersect"]
     assert fcl["distance"] == pytest.approx(exact["distance"], abs=1e-12)
+
+
+def test_a_nonconvex_experiment_runs_and_reads_back_with_its_pieces(tmp_path):
+    text = ('name = "nc"\nseed = 2\ncases = 6\n'
+            '[[family]]\nshape = "nonconvex"\npair = "box-in-notch"\n'
+            '[[algorithm]]\nname = "gjk-johnson"\ndecomposition = ["hull", "exact"]\n')
+    report = gjklab.run(text, out=str(tmp_path / "nc.h5"))
+    assert report.complete and report.cases == 6
+    archive = gjklab.read_archive(tmp_path / "nc.h5")
+    assert set(archive.exact["method"]) == {"mesh_truth"}
+    assert set(archive.mesh_exact["contact"]) <= {"separated", "triangles_meet", "a_inside_b",
+                                                  "b_inside_a"}
+    hull = archive.mesh_algorithms["gjk-johnson@decomposition=hull"]
+    exact = archive.mesh_algorithms["gjk-johnson@decomposition=exact"]
+    assert (hull["pieces_a"] == 1).all()
+    assert (exact["pieces_a"] == 2).all()  # the L in two boxes
+    assert (exact["piece_pairs_tested"] <= exact["piece_pairs"]).all()
+    # The cube is inside the L's hull: the hull intersects wherever the solids are apart.
+    apart = ~archive.exact["intersect"].astype(bool)
+    said = archive.algorithms["gjk-johnson@decomposition=hull"]["intersect"].astype(bool)
+    assert (said[apart]).all()
+    assert (archive.algorithms["gjk-johnson@decomposition=exact"]["boolean_correct"]).all()
