@@ -194,7 +194,8 @@ concavity=50, min_clusters=4). Raises ValueError when the mesh is bad or the dec
         py::list answers;
         for (const std::string& name : names) {
           if (const experiment::MeshPeerInfo* peer = experiment::find_mesh_peer(name)) {
-            answers.append(fields_dict(experiment::mesh_peer_fields(*peer, peer->run(sa.mesh, sb.mesh))));
+            answers.append(
+                fields_dict(experiment::mesh_peer_fields(*peer, peer->run(sa.mesh, sb.mesh))));
             continue;
           }
           const experiment::AlgorithmSpec spec = spec_from(name, options);

@@ -78,7 +78,8 @@ CLI::App* add_hunt_command(CLI::App& app, HuntArgs& args) {
       "hunt", "search an experiment's poses for failures of one algorithm (judged exactly)");
   cmd->add_option("experiment", args.experiment, "experiment file (families and placements)")
       ->required();
-  cmd->add_option("--algorithm", args.algorithm, "the algorithm to hunt: a registry name, or for nonconvex families the "
+  cmd->add_option("--algorithm", args.algorithm,
+                  "the algorithm to hunt: a registry name, or for nonconvex families the "
                   "experiment's label (e.g. gjk-johnson@decomposition=hull)")
       ->required();
   cmd->add_option("--queries", args.queries, "the search's budget of judged queries")

@@ -102,7 +102,8 @@ std::vector<std::string> answer_mesh_case(const PointCase& c, const QueryAsked& 
   }
   for (const experiment::MeshPeerInfo* peer : asked.mesh_peers) {
     try {
-      lines.push_back(fields_line(c.id, experiment::mesh_peer_fields(*peer, peer->run(a->mesh, b->mesh))));
+      lines.push_back(
+          fields_line(c.id, experiment::mesh_peer_fields(*peer, peer->run(a->mesh, b->mesh))));
     } catch (const std::exception& e) {
       lines.push_back(problem_line(c.id, e.what(), peer->name));
     }

@@ -118,6 +118,15 @@ std::string differences(const AlgorithmRecord& now, const AlgorithmRecord& then)
 /// archive's. Returns the exit status.
 int replay_mesh_case(const experiment::Archive& archive, const CaseResult& then,
                      const ReplayArgs& args, std::ostream& out, std::ostream& err) {
+  const auto& rec = then.record;
+  out << "case " << rec.case_id << " of " << args.archive << ": family '"
+      << (rec.family < archive.header.family_names.size() ? archive.header.family_names[rec.family]
+                                                          : "?")
+      << "', meshes of " << rec.vertices_a << " + " << rec.vertices_b << " vertices\n";
+  if (then.exact)
+    out << "exact: intersect " << then.exact->intersect << ", distance "
+        << fmt("%.17g", then.exact->distance) << " ("
+        << (then.mesh && then.mesh->exact ? then.mesh->exact->contact : "?") << ")\n";
   experiment::ExperimentConfig config = experiment::parse_experiment(
       archive.header.experiment_text, args.archive + " (archived experiment)");
   config.timing = false;
@@ -139,7 +148,8 @@ int replay_mesh_case(const experiment::Archive& archive, const CaseResult& then,
       out << ", on the meshes";
     out << ", " << to_string(r.termination) << ", failure class "
         << to_string(then.algorithms[k].failure) << "\n";
-    if (args.trace) out << "    (no trace: a non-convex pair's query runs over many pairs of pieces)\n";
+    if (args.trace)
+      out << "    (no trace: a non-convex pair's query runs over many pairs of pieces)\n";
     const std::string d = differences(r, then.algorithms[k]);
     out << "  " << (d.empty() ? "equals the archived result" : "DIFFERS from the archive:" + d)
         << "\n";
@@ -187,17 +197,7 @@ int run_replay_command(const ReplayArgs& args, std::ostream& out, std::ostream& 
           << " (the archive has " << archive.results.size() << " cases)\n";
       return 1;
     }
-    if (h.meshes) {
-      const auto& rec = found->record;
-      out << "case " << rec.case_id << " of " << args.archive << ": family '"
-          << (rec.family < h.family_names.size() ? h.family_names[rec.family] : "?")
-          << "', meshes of " << rec.vertices_a << " + " << rec.vertices_b << " vertices\n";
-      if (found->exact)
-        out << "exact: intersect " << found->exact->intersect << ", distance "
-            << fmt("%.17g", found->exact->distance) << " ("
-            << (found->mesh && found->mesh->exact ? found->mesh->exact->contact : "?") << ")\n";
-      return replay_mesh_case(archive, *found, args, out, err);
-    }
+    if (h.meshes) return replay_mesh_case(archive, *found, args, out, err);
     const experiment::CaseGeometry geometry = case_geometry(archive, *found, args.archive);
     const Polytope a(geometry.a), b(geometry.b);
     const std::vector<SimplexVertex> warm = case_warm_start(archive, *found, args.archive);

@@ -6,14 +6,14 @@
 #include <string>
 
 #include "../../src/experiment/run/result_codec.hpp"
+#include "../support/cli_run.hpp"
+#include "../support/experiment_files.hpp"
 #include "gjklab/exact/closed_mesh.hpp"
-#include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/exact/mesh_truth.hpp"
+#include "gjklab/experiment/archive/archive.hpp"
 #include "gjklab/experiment/cases/families.hpp"
 #include "gjklab/experiment/hunt/hunt.hpp"
 #include "gjklab/experiment/run/driver.hpp"
-#include "../support/cli_run.hpp"
-#include "../support/experiment_files.hpp"
 
 using namespace gjklab;
 using namespace gjklab::experiment;
@@ -23,7 +23,7 @@ using gjklab::testing::parse;
 namespace {
 
 std::string nonconvex_experiment(const std::string& pair, const std::string& algorithms,
-                       int cases = 10) {
+                                 int cases = 10) {
   return "name = \"nc\"\nseed = 4\ncases = " + std::to_string(cases) +
          "\n[[family]]\nshape = \"nonconvex\"\npair = \"" + pair + "\"\n" + algorithms;
 }
@@ -92,17 +92,17 @@ TEST_CASE("nonconvex experiments: what does not apply is an error naming the key
           "[unit][meshes][config]") {
   const std::string johnson = "[[algorithm]]\nname = \"gjk-johnson\"\n";
   CHECK_THROWS_WITH(parse(nonconvex_experiment("knots", johnson)),
-                    Catch::Contains("key 'family[0].pair'") && Catch::Contains("unknown pair 'knots'") &&
-                        Catch::Contains("peg-in-hole"));
-  CHECK_THROWS_WITH(parse("name = \"nc\"\nseed = 1\ncases = 2\n[[family]]\nshape = \"nonconvex\"\n" +
-                          johnson),
-                    Catch::Contains("key 'family[0].pair'") && Catch::Contains("missing"));
+                    Catch::Contains("key 'family[0].pair'") &&
+                        Catch::Contains("unknown pair 'knots'") && Catch::Contains("peg-in-hole"));
+  CHECK_THROWS_WITH(
+      parse("name = \"nc\"\nseed = 1\ncases = 2\n[[family]]\nshape = \"nonconvex\"\n" + johnson),
+      Catch::Contains("key 'family[0].pair'") && Catch::Contains("missing"));
   CHECK_THROWS_WITH(parse(nonconvex_experiment("rings\"\nvertices = \"8", johnson)),
                     Catch::Contains("family[0].vertices") &&
                         Catch::Contains("does not apply to shape = \"nonconvex\""));
-  CHECK_THROWS_WITH(parse(nonconvex_experiment("rings\"\npath = \"x.off", johnson)),
-                    Catch::Contains("family[0].path") &&
-                        Catch::Contains("applies only to pair = \"meshes\""));
+  CHECK_THROWS_WITH(
+      parse(nonconvex_experiment("rings\"\npath = \"x.off", johnson)),
+      Catch::Contains("family[0].path") && Catch::Contains("applies only to pair = \"meshes\""));
   CHECK_THROWS_WITH(parse(nonconvex_experiment("meshes\"\npath = \"no/such/folder", johnson)),
                     Catch::Contains("family[0].path") && Catch::Contains("no/such/folder"));
   CHECK_THROWS_WITH(parse(nonconvex_experiment("rings", johnson) + "[[family]]\nshape = \"box\"\n"),
@@ -114,24 +114,24 @@ TEST_CASE("nonconvex experiments: what does not apply is an error naming the key
   CHECK_THROWS_WITH(
       parse(nonconvex_experiment("rings", johnson + "decomposition = \"tetrahedra\"\n")),
       Catch::Contains("algorithm[0].decomposition") && Catch::Contains("hull, exact"));
-  CHECK_THROWS_WITH(parse(nonconvex_experiment("rings", johnson + "decomposition = [\"hull\", \"hull\"]\n")),
-                    Catch::Contains("lists 'hull' twice"));
   CHECK_THROWS_WITH(
-      parse(nonconvex_experiment("rings", johnson + "decomposition = [\"hull\", \"exact\"]\nlabel = \"x\"\n")),
+      parse(nonconvex_experiment("rings", johnson + "decomposition = [\"hull\", \"hull\"]\n")),
+      Catch::Contains("lists 'hull' twice"));
+  CHECK_THROWS_WITH(
+      parse(nonconvex_experiment(
+          "rings", johnson + "decomposition = [\"hull\", \"exact\"]\nlabel = \"x\"\n")),
       Catch::Contains("algorithm[0].label"));
   CHECK_THROWS_WITH(
       parse(nonconvex_experiment("rings", johnson + "decomposition = \"exact\"\n"
-                                          "decomposition_options = { concavity = 5 }\n")),
-      Catch::Contains("algorithm[0].decomposition_options") &&
-          Catch::Contains("takes options"));
+                                                    "decomposition_options = { concavity = 5 }\n")),
+      Catch::Contains("algorithm[0].decomposition_options") && Catch::Contains("takes options"));
   // A mesh that does not bound a solid names its file (and is never repaired).
   const ExperimentFolder folder("nonconvex-bad-mesh");
   folder.write("open.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
-  CHECK_THROWS_WITH(
-      gjklab::experiment::parse_experiment(
-          nonconvex_experiment("meshes\"\npath = \"" + folder.path.string(), johnson),
-          (folder.path / "exp.toml").string()),
-      Catch::Contains("family[0].path") && Catch::Contains("open.off"));
+  CHECK_THROWS_WITH(gjklab::experiment::parse_experiment(
+                        nonconvex_experiment("meshes\"\npath = \"" + folder.path.string(), johnson),
+                        (folder.path / "exp.toml").string()),
+                    Catch::Contains("family[0].path") && Catch::Contains("open.off"));
   // The same keys in a convex experiment.
   const std::string convex = "name = \"c\"\nseed = 1\ncases = 2\n[[family]]\nshape = \"box\"\n";
   CHECK_THROWS_WITH(parse(convex + johnson + "decomposition = \"hull\"\n"),
@@ -140,15 +140,15 @@ TEST_CASE("nonconvex experiments: what does not apply is an error naming the key
 #ifdef GJKLAB_HAVE_FCL
   CHECK_THROWS_WITH(parse(convex + "[[algorithm]]\nname = \"fcl-bvh\"\n"),
                     Catch::Contains("algorithm[0].name") && Catch::Contains("no nonconvex family"));
-  CHECK_THROWS_WITH(
-      parse(nonconvex_experiment("rings", "[[algorithm]]\nname = \"fcl-bvh\"\nmax_iterations = 3\n")),
-      Catch::Contains("algorithm[0].max_iterations"));
+  CHECK_THROWS_WITH(parse(nonconvex_experiment(
+                        "rings", "[[algorithm]]\nname = \"fcl-bvh\"\nmax_iterations = 3\n")),
+                    Catch::Contains("algorithm[0].max_iterations"));
 #endif
 #ifdef GJKLAB_HAVE_HACD
-  CHECK_THROWS_WITH(
-      parse(nonconvex_experiment("rings", johnson + "decomposition = \"approximate\"\n"
-                                          "decomposition_options = { concavity = -1 }\n")),
-      Catch::Contains("algorithm[0].decomposition_options.concavity"));
+  CHECK_THROWS_WITH(parse(nonconvex_experiment(
+                        "rings", johnson + "decomposition = \"approximate\"\n"
+                                           "decomposition_options = { concavity = -1 }\n")),
+                    Catch::Contains("algorithm[0].decomposition_options.concavity"));
 #endif
 }
 
@@ -162,7 +162,7 @@ TEST_CASE("nonconvex experiments: hull false positives, exact pieces right, FCL 
 name = "gjk-bool"
 decomposition = ["hull", "exact"]
 )",
-                                               16));
+                                                         16));
   int hull_false_positives = 0, apart = 0;
   for (std::uint64_t id = 0; id < ls.cases; ++id) {
     const CaseResult r = evaluate_case(ls, id);
@@ -171,8 +171,8 @@ decomposition = ["hull", "exact"]
     CHECK(r.exact->method == exact::AnswerMethod::mesh_truth);
     const auto& hull = r.algorithms[index_of(ls, "gjk-johnson@decomposition=hull")];
     apart += !r.exact->intersect;
-    hull_false_positives += !r.exact->intersect && r.exact->contact != ContactClass::touching_band &&
-                            hull.intersect;
+    hull_false_positives +=
+        !r.exact->intersect && r.exact->contact != ContactClass::touching_band && hull.intersect;
     for (const char* label : {"gjk-johnson@decomposition=exact", "gjk-bool@decomposition=exact"}) {
       INFO(label << ", case " << id);
       const auto& exact = r.algorithms[index_of(ls, label)];
@@ -207,7 +207,7 @@ TEST_CASE("nonconvex archives: pieces and witnesses written, read back, resumed,
 [[algorithm]]
 name = "gjk-bool"
 )",
-                                                   8));
+                                                             8));
   ExperimentFolder folder("nonconvex-archive");
   RunOptions whole, part;
   whole.output = (folder.path / "whole.h5").string();

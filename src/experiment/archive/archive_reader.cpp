@@ -247,12 +247,12 @@ void read_mesh_geometry(const Reader& in, hid_t m, Archive& a) {
   const std::string p = "/meshes";
   const auto index_rows = read_table(in, m, p, schema::kMeshGeometryColumns,
                                      in.committed(schema::checkpoint::mesh_geometry));
-  const auto fa = read_table(in, m, p, schema::kFacesAColumns,
-                             in.committed(schema::checkpoint::mesh_faces_a));
-  const auto fb = read_table(in, m, p, schema::kFacesBColumns,
-                             in.committed(schema::checkpoint::mesh_faces_b));
-  const auto pieces = read_table(in, m, p, schema::kPieceColumns,
-                                 in.committed(schema::checkpoint::mesh_pieces));
+  const auto fa =
+      read_table(in, m, p, schema::kFacesAColumns, in.committed(schema::checkpoint::mesh_faces_a));
+  const auto fb =
+      read_table(in, m, p, schema::kFacesBColumns, in.committed(schema::checkpoint::mesh_faces_b));
+  const auto pieces =
+      read_table(in, m, p, schema::kPieceColumns, in.committed(schema::checkpoint::mesh_pieces));
   const auto corners = read_table(in, m, p, schema::kPieceCornerColumns,
                                   in.committed(schema::checkpoint::mesh_piece_corners));
   const auto index = case_index(a);
@@ -260,9 +260,11 @@ void read_mesh_geometry(const Reader& in, hid_t m, Archive& a) {
     CaseResult& r = a.results[find_case(in, index, p + "/case_id", row.case_id)];
     if (!r.geometry)
       in.cx.error(p + "/case_id " + std::to_string(row.case_id) + " has no /geometry row");
-    for (const schema::FaceRow& f : rows_of(in, fa, row.faces_a_offset, row.faces_a_count, "faces_a"))
+    for (const schema::FaceRow& f :
+         rows_of(in, fa, row.faces_a_offset, row.faces_a_count, "faces_a"))
       r.geometry->faces_a.push_back(f.face);
-    for (const schema::FaceRow& f : rows_of(in, fb, row.faces_b_offset, row.faces_b_count, "faces_b"))
+    for (const schema::FaceRow& f :
+         rows_of(in, fb, row.faces_b_offset, row.faces_b_count, "faces_b"))
       r.geometry->faces_b.push_back(f.face);
     for (const schema::PieceRow& piece :
          rows_of(in, pieces, row.pieces_offset, row.pieces_count, "pieces")) {

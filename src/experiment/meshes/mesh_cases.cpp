@@ -17,6 +17,36 @@ namespace gjklab::experiment {
 
 namespace {
 
+/// Both meshes' pieces (corners) under the spec's decomposition; `source` names the pair in
+/// errors, which name the side and the decomposition.
+std::array<std::vector<std::vector<Vec3>>, 2> decompose_pair(const AlgorithmSpec& spec,
+                                                             const TriangleMesh& a,
+                                                             const TriangleMesh& b,
+                                                             const std::string& source) {
+  std::array<std::vector<std::vector<Vec3>>, 2> corners;
+  const TriangleMesh* meshes[] = {&a, &b};
+  for (int side = 0; side < 2; ++side) {
+    const std::string name = source + ", mesh " + (side == 0 ? "A" : "B");
+    try {
+      corners[side] =
+          spec.decomposition->decompose(*meshes[side], name, spec.decomposition_options).pieces;
+    } catch (const std::exception& error) {
+      throw std::runtime_error(name + ": decomposition '" + std::string(spec.decomposition->name) +
+                               "' failed: " + error.what());
+    }
+  }
+  return corners;
+}
+
+std::array<std::vector<Polytope>, 2> polytopes_of(
+    const std::array<std::vector<std::vector<Vec3>>, 2>& corners) {
+  std::array<std::vector<Polytope>, 2> pieces;
+  for (int side = 0; side < 2; ++side)
+    for (const std::vector<Vec3>& piece : corners[side])
+      pieces[side].emplace_back(piece);
+  return pieces;
+}
+
 /// Each side's pieces under every decomposition the case's algorithms asked for, made once.
 class CaseDecompositions {
  public:
@@ -30,21 +60,9 @@ class CaseDecompositions {
     Entry& e = entries_.emplace_back();
     e.described = described;
     e.name = std::string(spec.decomposition->name);
-    const TriangleMesh* meshes[] = {&*case_.mesh_a, &*case_.mesh_b};
-    for (int side = 0; side < 2; ++side) {
-      const std::string source = "case " + std::to_string(case_.record.case_id) + ", mesh " +
-                                 (side == 0 ? "A" : "B");
-      try {
-        e.corners[side] = spec.decomposition->decompose(*meshes[side], source,
-                                                        spec.decomposition_options)
-                              .pieces;
-      } catch (const std::exception& error) {
-        throw std::runtime_error(source + ": decomposition '" + e.name +
-                                 "' failed: " + error.what());
-      }
-      for (const std::vector<Vec3>& piece : e.corners[side])
-        e.pieces[side].emplace_back(piece);
-    }
+    e.corners = decompose_pair(spec, *case_.mesh_a, *case_.mesh_b,
+                               "case " + std::to_string(case_.record.case_id));
+    e.pieces = polytopes_of(e.corners);
     return e.pieces;
   }
 
@@ -172,7 +190,7 @@ MeshTruthRecords mesh_truth_records(const exact::MeshTruth& t, double band) {
   r.distance2_num = t.distance_squared.numerator();
   r.distance2_den = t.distance_squared.denominator();
   r.hull_vertices_a = r.hull_vertices_b = -1;
-  r.contact = t.intersect         ? ContactClass::intersecting
+  r.contact = t.intersect          ? ContactClass::intersecting
               : t.distance <= band ? ContactClass::touching_band
                                    : ContactClass::separated;
   r.method = exact::AnswerMethod::mesh_truth;
@@ -188,18 +206,7 @@ MeshTruthRecords mesh_truth_records(const exact::MeshTruth& t, double band) {
 Outcome run_mesh_algorithm(const AlgorithmSpec& spec, const TriangleMesh& a, const TriangleMesh& b,
                            const std::string& source) {
   if (spec.mesh_peer) return spec.mesh_peer->run(a, b).outcome;
-  std::array<std::vector<Polytope>, 2> pieces;
-  const TriangleMesh* meshes[] = {&a, &b};
-  for (int side = 0; side < 2; ++side) {
-    const std::string name = source + ", mesh " + (side == 0 ? "A" : "B");
-    try {
-      pieces[side] = piece_polytopes(
-          spec.decomposition->decompose(*meshes[side], name, spec.decomposition_options));
-    } catch (const std::exception& error) {
-      throw std::runtime_error(name + ": decomposition '" + std::string(spec.decomposition->name) +
-                               "' failed: " + error.what());
-    }
-  }
+  const auto pieces = polytopes_of(decompose_pair(spec, a, b, source));
   return run_on_pieces(*find_algorithm(spec.name), pieces[0], pieces[1], spec.options).outcome;
 }
 

@@ -36,7 +36,7 @@ enum class NonconvexPair : std::uint8_t {
   /// distance is g to rounding of 1 + g; |g| log-uniform in [1e-12, 0.25], half of the cases
   /// overlapping by |g|), axis-aligned: inside the L's hull, so the hull says "intersect"
   box_in_notch,
-  meshes,       ///< two closed meshes of the family's list, turned at random, centres 0.6–1.8 apart
+  meshes,  ///< two closed meshes of the family's list, turned at random, centres 0.6–1.8 apart
 };
 
 inline constexpr auto kNonconvexPairNames = std::to_array<EnumName<NonconvexPair>>({

@@ -254,7 +254,7 @@ struct MeshAlgorithmRecord {
 
 /// The non-convex part of a case's result (nonconvex families only).
 struct MeshCaseResult {
-  std::optional<MeshExactRecord> exact;       ///< absent when the oracle is off
+  std::optional<MeshExactRecord> exact;         ///< absent when the oracle is off
   std::vector<MeshAlgorithmRecord> algorithms;  ///< in the experiment's algorithm order
 };
 

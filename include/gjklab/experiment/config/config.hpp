@@ -130,7 +130,7 @@ struct FamilySpec {
 
 /// One algorithm to run, with its options.
 struct AlgorithmSpec {
-  std::string name;   ///< registry name (or a mesh peer's, with mesh_peer set)
+  std::string name;  ///< registry name (or a mesh peer's, with mesh_peer set)
   /// result group name: the name, or "name@key=value" in a sweep or for a decomposition
   std::string label;
   AlgorithmOptions options;
